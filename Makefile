@@ -1,0 +1,48 @@
+# The two commands of the README: `make report` and `make test`. Both install what is missing.
+SHELL := /bin/bash
+CARGO ?= cargo
+VENV := .venv
+PYTHON := $(VENV)/bin/python
+
+.PHONY: deps cgal fonts venv build report test lint bench fuzz clean
+
+deps: cgal fonts venv
+
+# CGAL 5.5 (header-only) with GMP, MPFR and Boost, from Debian, when dpkg says it is missing.
+cgal:
+	@dpkg -s libcgal-dev >/dev/null 2>&1 || { \
+	  echo "installing libcgal-dev"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libcgal-dev; }
+
+# A font for the text in PNG plots.
+fonts:
+	@dpkg -s fonts-dejavu-core >/dev/null 2>&1 || { \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq fonts-dejavu-core; }
+
+# meshio and pandas, to check that Python users can read our output.
+venv: $(VENV)/.done
+$(VENV)/.done: requirements-test.txt
+	python3 -m venv $(VENV)
+	$(PYTHON) -m pip install -q -r requirements-test.txt
+	touch $@
+
+build: deps
+	$(CARGO) build --release
+
+report: build
+	./target/release/hexmesh datasets --out datasets
+	./target/release/hexmesh report --out reports
+
+lint: deps
+	$(CARGO) fmt --all -- --check
+	$(CARGO) clippy --all-targets -- -D warnings
+
+test: deps lint
+	HEXMESH_PYTHON=$(abspath $(PYTHON)) $(CARGO) test --all-targets
+
+bench: deps
+	$(CARGO) bench
+
+clean:
+	$(CARGO) clean
+	rm -rf $(VENV)

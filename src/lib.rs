@@ -1,0 +1,17 @@
+//! hexmesh: the hexagonal Delaunay mesher of Sußner & Greiner (IMR 2009) and the other
+//! meshers of the papers in `shared/papers`, plus a harness that checks every mesh against
+//! what its mesher promises and compares meshers side by side.
+//!
+//! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
+
+pub mod error;
+pub mod geom;
+pub mod mesh;
+pub mod mesher;
+pub mod registry;
+
+pub use error::{Error, InputError, Result};
+pub use geom::{Hexagon, Point};
+pub use mesh::{Pslg, TriMesh};
+pub use mesher::{Budget, MeshRun, Mesher, Params};
+pub use registry::{mesher, mesher_names, meshers};

@@ -1,0 +1,374 @@
+//! The two exchange types: `Pslg`, what every mesher takes, and `TriMesh`, what every mesher
+//! gives back and every check consumes.
+
+use crate::error::{Error, InputError, Result};
+use crate::geom::{orient2d, Hexagon, Point};
+
+/// A planar straight-line graph: points, segments between them, and hole seeds as in
+/// Triangle's .poly format. A point set is a PSLG without segments.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Pslg {
+    pub points: Vec<Point>,
+    /// Pairs of 0-based point indices.
+    pub segments: Vec<[u32; 2]>,
+    /// Seed points: the region around each, bounded by segments, is removed.
+    pub holes: Vec<Point>,
+    /// The domain of a point set: the bounding hexagon. `None` means fitted to the points
+    /// (`Hexagon::fitted`). Ignored when the input has segments.
+    pub hexagon: Option<Hexagon>,
+}
+
+impl Pslg {
+    /// A point set, with the bounding hexagon fitted to it.
+    pub fn from_points(points: Vec<Point>) -> Pslg {
+        Pslg {
+            points,
+            ..Pslg::default()
+        }
+    }
+
+    /// True when the input has segments, so the domain is what they bound.
+    pub fn has_segments(&self) -> bool {
+        !self.segments.is_empty()
+    }
+
+    /// The bounding hexagon of a point set: given, or fitted (DESIGN.md "Datasets").
+    pub fn bounding_hexagon(&self) -> Hexagon {
+        self.hexagon
+            .unwrap_or_else(|| Hexagon::fitted(&self.points))
+    }
+
+    /// The domain a reference mesher is asked to mesh (DESIGN.md "Datasets"): for a point set,
+    /// the bounding hexagon's corners (appended after the input points) and its six edges as
+    /// segments; a PSLG is returned unchanged.
+    pub fn reference_domain(&self) -> Pslg {
+        if self.has_segments() {
+            return self.clone();
+        }
+        let hex = self.bounding_hexagon();
+        let mut out = self.clone();
+        let base = out.points.len() as u32;
+        out.points.extend(hex.corners());
+        out.segments = (0..6).map(|i| [base + i, base + (i + 1) % 6]).collect();
+        out.hexagon = Some(hex);
+        out
+    }
+
+    /// Checks the input before any mesher sees it: at least one point, finite coordinates,
+    /// no duplicate points, segments naming existing distinct vertices, no two segments
+    /// crossing or overlapping, no point inside a segment, finite hole seeds, and a coordinate
+    /// range that f64 can mesh. Returns the first problem found, deterministically.
+    pub fn check(&self) -> std::result::Result<(), InputError> {
+        if self.points.is_empty() {
+            return Err(InputError::Empty);
+        }
+        for (index, &p) in self.points.iter().enumerate() {
+            if !p[0].is_finite() || !p[1].is_finite() {
+                return Err(InputError::NonFinite { index, point: p });
+            }
+        }
+        let max_abs = self
+            .points
+            .iter()
+            .flat_map(|p| [p[0].abs(), p[1].abs()])
+            .fold(0.0, f64::max);
+        if max_abs > 1e150 {
+            return Err(InputError::Range {
+                detail: format!(
+                    "coordinates as large as {max_abs:e} would overflow when squared; scale the input"
+                ),
+            });
+        }
+        if let Some((first, second)) = first_duplicate(&self.points) {
+            return Err(InputError::Duplicate {
+                first,
+                second,
+                point: self.points[first],
+            });
+        }
+        let n = self.points.len();
+        for (segment, s) in self.segments.iter().enumerate() {
+            for &v in s {
+                if v as usize >= n {
+                    return Err(InputError::MissingVertex {
+                        segment,
+                        vertex: v as i64,
+                        count: n,
+                    });
+                }
+            }
+            if s[0] == s[1] {
+                return Err(InputError::DegenerateSegment { segment });
+            }
+        }
+        for (index, h) in self.holes.iter().enumerate() {
+            if !h[0].is_finite() || !h[1].is_finite() {
+                return Err(InputError::NonFiniteHole { index });
+            }
+        }
+        self.check_segment_intersections()
+    }
+
+    /// Segment–segment and point–segment tests with exact orientation signs. A sweep over
+    /// x-sorted bounding boxes keeps the usual case near O(n log n).
+    fn check_segment_intersections(&self) -> std::result::Result<(), InputError> {
+        if self.segments.is_empty() {
+            return Ok(());
+        }
+        let p = &self.points;
+        let seg = |s: [u32; 2]| (p[s[0] as usize], p[s[1] as usize]);
+        // Items: segments and points, each with an x-interval.
+        #[derive(Clone, Copy)]
+        enum Item {
+            Seg(usize),
+            Pt(usize),
+        }
+        let mut items: Vec<(f64, f64, Item)> = self
+            .segments
+            .iter()
+            .enumerate()
+            .map(|(i, &s)| {
+                let (a, b) = seg(s);
+                (a[0].min(b[0]), a[0].max(b[0]), Item::Seg(i))
+            })
+            .collect();
+        items.extend(p.iter().enumerate().map(|(i, q)| (q[0], q[0], Item::Pt(i))));
+        items.sort_by(|x, y| x.0.total_cmp(&y.0));
+        let mut active: Vec<(f64, usize)> = Vec::new(); // (xmax, segment)
+        let mut found: Option<(usize, InputError)> = None;
+        let mut record = |key: usize, e: InputError| {
+            if found.as_ref().is_none_or(|(k, _)| key < *k) {
+                found = Some((key, e));
+            }
+        };
+        for &(xmin, xmax, item) in &items {
+            active.retain(|&(end, _)| end >= xmin);
+            match item {
+                Item::Pt(i) => {
+                    for &(_, s) in &active {
+                        let sv = self.segments[s];
+                        if sv[0] as usize == i || sv[1] as usize == i {
+                            continue;
+                        }
+                        let (a, b) = seg(sv);
+                        if point_inside_segment(a, b, p[i]) {
+                            record(
+                                s,
+                                InputError::PointOnSegment {
+                                    point: i,
+                                    segment: s,
+                                },
+                            );
+                        }
+                    }
+                }
+                Item::Seg(s) => {
+                    let (a, b) = seg(self.segments[s]);
+                    for &(_, t) in &active {
+                        let (c, d) = seg(self.segments[t]);
+                        if segments_conflict(self.segments[s], self.segments[t], a, b, c, d) {
+                            let (first, second) = (s.min(t), s.max(t));
+                            record(first, InputError::CrossingSegments { first, second });
+                        }
+                    }
+                    active.push((xmax, s));
+                }
+            }
+        }
+        match found {
+            Some((_, e)) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    /// `check`, turned into the crate's error type.
+    pub fn validate_input(&self) -> Result<()> {
+        self.check().map_err(Error::input)
+    }
+}
+
+/// The first pair of equal points (by the smaller second index), found by sorting.
+/// Adding 0.0 folds -0.0 into 0.0, so that the two zeros count as one coordinate.
+fn first_duplicate(points: &[Point]) -> Option<(usize, usize)> {
+    let key = |i: usize| [points[i][0] + 0.0, points[i][1] + 0.0];
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_by(|&a, &b| {
+        let (ka, kb) = (key(a), key(b));
+        ka[0]
+            .total_cmp(&kb[0])
+            .then(ka[1].total_cmp(&kb[1]))
+            .then(a.cmp(&b))
+    });
+    order
+        .windows(2)
+        .filter(|w| key(w[0]) == key(w[1]))
+        .map(|w| (w[0].min(w[1]), w[0].max(w[1])))
+        .min_by_key(|&(first, second)| (second, first))
+}
+
+/// True when `q` lies on segment ab strictly between its endpoints (exact).
+fn point_inside_segment(a: Point, b: Point, q: Point) -> bool {
+    orient2d(a, b, q) == 0.0 && strictly_between(a, b, q)
+}
+
+fn strictly_between(a: Point, b: Point, q: Point) -> bool {
+    let (lo_x, hi_x) = (a[0].min(b[0]), a[0].max(b[0]));
+    let (lo_y, hi_y) = (a[1].min(b[1]), a[1].max(b[1]));
+    q[0] >= lo_x && q[0] <= hi_x && q[1] >= lo_y && q[1] <= hi_y && q != a && q != b
+}
+
+/// True when segments s = ab and t = cd meet anywhere but at a shared endpoint.
+fn segments_conflict(s: [u32; 2], t: [u32; 2], a: Point, b: Point, c: Point, d: Point) -> bool {
+    let shared = s.iter().filter(|v| t.contains(v)).count();
+    if shared == 2 {
+        return true; // the same segment twice
+    }
+    let o1 = orient2d(a, b, c);
+    let o2 = orient2d(a, b, d);
+    let o3 = orient2d(c, d, a);
+    let o4 = orient2d(c, d, b);
+    if o1 == 0.0 && o2 == 0.0 {
+        // Collinear: they conflict when they overlap in more than a shared endpoint.
+        return strictly_between(a, b, c)
+            || strictly_between(a, b, d)
+            || strictly_between(c, d, a)
+            || strictly_between(c, d, b);
+    }
+    if shared == 1 {
+        // Meeting at a vertex: a conflict only if one runs along the other, handled above.
+        return false;
+    }
+    let proper = o1 * o2 < 0.0 && o3 * o4 < 0.0;
+    let touching = (o1 == 0.0 && strictly_between(a, b, c))
+        || (o2 == 0.0 && strictly_between(a, b, d))
+        || (o3 == 0.0 && strictly_between(c, d, a))
+        || (o4 == 0.0 && strictly_between(c, d, b));
+    proper || touching
+}
+
+/// A triangle mesh: f64 vertices and counter-clockwise triangles of 0-based vertex indices.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct TriMesh {
+    pub vertices: Vec<Point>,
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl TriMesh {
+    /// The three corners of triangle `t`.
+    pub fn corners(&self, t: usize) -> [Point; 3] {
+        let [a, b, c] = self.triangles[t];
+        [
+            self.vertices[a as usize],
+            self.vertices[b as usize],
+            self.vertices[c as usize],
+        ]
+    }
+
+    /// Sum of the (signed) triangle areas.
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.corners(t);
+                0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+            })
+            .sum()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square() -> Pslg {
+        Pslg {
+            points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+            ..Pslg::default()
+        }
+    }
+
+    #[test]
+    fn a_square_outline_is_accepted() {
+        assert_eq!(square().check(), Ok(()));
+    }
+
+    #[test]
+    fn crossing_diagonals_are_refused() {
+        let mut p = square();
+        p.segments.extend([[0, 2], [1, 3]]);
+        assert_eq!(
+            p.check(),
+            Err(InputError::CrossingSegments {
+                first: 4,
+                second: 5
+            })
+        );
+    }
+
+    #[test]
+    fn a_point_inside_a_segment_is_refused() {
+        let mut p = square();
+        p.points.push([0.5, 0.0]);
+        assert_eq!(
+            p.check(),
+            Err(InputError::PointOnSegment {
+                point: 4,
+                segment: 0
+            })
+        );
+    }
+
+    #[test]
+    fn overlapping_collinear_segments_are_refused() {
+        let p = Pslg {
+            points: vec![[0.0, 0.0], [2.0, 0.0], [1.0, 1.0], [3.0, 1.0]],
+            segments: vec![[0, 1], [2, 3], [0, 1]],
+            ..Pslg::default()
+        };
+        assert!(matches!(
+            p.check(),
+            Err(InputError::CrossingSegments {
+                first: 0,
+                second: 2
+            })
+        ));
+    }
+
+    #[test]
+    fn duplicates_nan_and_missing_vertices_are_named() {
+        let d = Pslg::from_points(vec![[0.0, 0.0], [1.0, 2.0], [-0.0, 0.0]]);
+        assert!(matches!(
+            d.check(),
+            Err(InputError::Duplicate {
+                first: 0,
+                second: 2,
+                ..
+            })
+        ));
+        let n = Pslg::from_points(vec![[0.0, 0.0], [f64::NAN, 2.0]]);
+        assert!(matches!(
+            n.check(),
+            Err(InputError::NonFinite { index: 1, .. })
+        ));
+        let mut m = square();
+        m.segments.push([2, 9]);
+        assert!(matches!(
+            m.check(),
+            Err(InputError::MissingVertex {
+                segment: 4,
+                vertex: 9,
+                ..
+            })
+        ));
+        assert_eq!(Pslg::default().check(), Err(InputError::Empty));
+    }
+
+    #[test]
+    fn reference_domain_of_a_point_set_is_the_bounding_hexagon() {
+        let p = Pslg::from_points(vec![[0.0, 0.0], [1.0, 0.0]]);
+        let d = p.reference_domain();
+        assert_eq!(d.points.len(), 8);
+        assert_eq!(d.segments.len(), 6);
+        assert_eq!(d.check(), Ok(()));
+    }
+}

@@ -1,0 +1,79 @@
+//! The one interface every mesher sits behind, ours and the references, so that the CLI and
+//! the harness loop over names. Input loading and output writing stay outside `mesh`.
+
+use std::time::Duration;
+
+use crate::error::Result;
+use crate::mesh::{Pslg, TriMesh};
+
+/// Limits that bound every refinement loop. `None` means no limit of that kind.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Budget {
+    /// Refinement steps (what a step is depends on the mesher: a split, an insertion, ...).
+    pub max_steps: Option<u64>,
+    /// Output vertices.
+    pub max_vertices: Option<usize>,
+    /// Wall-clock time of the meshing call.
+    pub max_time: Option<Duration>,
+}
+
+/// What a mesher is asked for. Meshers ignore what does not apply to them and say so in
+/// `Mesher::settings`.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Params {
+    /// Requested minimum angle in degrees (references; our meshers have fixed bounds).
+    pub min_angle: Option<f64>,
+    /// Requested maximum triangle area.
+    pub max_area: Option<f64>,
+    pub budget: Budget,
+}
+
+impl Params {
+    pub fn with_min_angle(mut self, degrees: f64) -> Params {
+        self.min_angle = Some(degrees);
+        self
+    }
+
+    pub fn with_max_area(mut self, area: f64) -> Params {
+        self.max_area = Some(area);
+        self
+    }
+
+    pub fn with_budget(mut self, budget: Budget) -> Params {
+        self.budget = budget;
+        self
+    }
+}
+
+/// The outcome of one meshing call. Stopping early (a budget ran out) is not an error: the
+/// mesh so far is returned with `complete == false` and the reason.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshRun {
+    pub mesh: TriMesh,
+    pub complete: bool,
+    /// Why the mesher stopped early, when it did.
+    pub stop_reason: Option<String>,
+    /// Refinement steps taken.
+    pub steps: u64,
+    /// Time of the meshing call alone.
+    pub elapsed: Duration,
+}
+
+/// A 2D mesher.
+pub trait Mesher: Send + Sync {
+    /// The name used on the command line and in reports (DESIGN.md "Data flow").
+    fn name(&self) -> &'static str;
+
+    /// The version of the implementation (a crate version, a library version).
+    fn version(&self) -> String;
+
+    /// The effective settings a call with `params` uses, spelled in the mesher's own terms
+    /// (e.g. Triangle's switches, CGAL's b = sin²θ), for report rows.
+    fn settings(&self, params: &Params) -> String;
+
+    /// True when the mesher keeps input segments as chains of mesh edges.
+    fn supports_segments(&self) -> bool;
+
+    /// Meshes the input. The input has passed `Pslg::check`.
+    fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun>;
+}

@@ -1,0 +1,165 @@
+//! Extraction of the dual triangle mesh, paper 000 Sec. 4.2: an edge joins the centres of
+//! adjacent full hexagons, a semi-hexagon neighbour is replaced by the full hexagon opposite
+//! it, boundary semi-hexagons count as virtual full hexagons, and the centre of an occupied
+//! hexagon is replaced by its input point.
+//!
+//! The triangles are found as a 1:4 / 1:2 refinement of lattice triangles (DESIGN.md): the
+//! triangle of three mutually adjacent full hexagons A, B, C of level k is split into the four
+//! triangles of level k + 1 when all three are subdivided, into two through the midpoint of AB
+//! (a full hexagon joined from two semi-hexagons) when exactly A and B are, and is a triangle of
+//! the mesh otherwise; the centre of a subdivided hexagon is the centre of its central child.
+//! Cells outside the bounding hexagon count as subdivided, and a triangle is kept only when its
+//! three centres lie in the closed bounding hexagon. The balancing rule guarantees that the
+//! hexagons of a kept triangle are not subdivided further.
+
+use crate::geom::{orient2d, Point};
+use crate::hex::lattice::{FxHashMap, Key};
+use crate::hex::subdivision::Hierarchy;
+use crate::mesh::TriMesh;
+
+/// How centres are placed in the output.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Placement {
+    /// Occupied centres replaced by their input point (Sec. 4.2), input point i is vertex i.
+    Relocated,
+    /// Plain lattice centres only: the mesh of an unfinished refinement.
+    Plain,
+}
+
+/// The dual mesh of the hierarchy's current subdivision.
+pub fn extract(h: &Hierarchy, placement: Placement) -> TriMesh {
+    let mut b = Builder::new(h, placement);
+    let mut stack: Vec<[Key; 3]> = Vec::new();
+    // The six lattice triangles around the root, counter-clockwise because the lattice
+    // directions are listed counter-clockwise.
+    for d in (0..6).rev() {
+        stack.push([
+            Key::ROOT,
+            Key::ROOT.neighbor(d),
+            Key::ROOT.neighbor((d + 1) % 6),
+        ]);
+    }
+    while let Some(tri) = stack.pop() {
+        if !tri.iter().any(|c| c.inside()) {
+            continue;
+        }
+        let sub = tri.map(|c| h.is_subdivided_or_outside(c));
+        match sub.iter().filter(|&&s| s).count() {
+            3 => {
+                let [a, b2, c] = tri;
+                let (mab, mbc, mca) = (midpoint(a, b2), midpoint(b2, c), midpoint(c, a));
+                let (ca, cb, cc) = (a.central_child(), b2.central_child(), c.central_child());
+                // Pushed in reverse so that they are emitted in this order.
+                stack.push([mab, mbc, mca]);
+                stack.push([mca, mbc, cc]);
+                stack.push([mab, cb, mbc]);
+                stack.push([ca, mab, mca]);
+            }
+            2 => {
+                // Rotate so that the unsubdivided hexagon comes last: (A, B sub, C not).
+                let r = (0..3).find(|&r| !sub[(r + 2) % 3]).unwrap_or(0);
+                let [a, b2, c] = [tri[r], tri[(r + 1) % 3], tri[(r + 2) % 3]];
+                let m = midpoint(a, b2);
+                b.emit([m, b2, c]);
+                b.emit([a, m, c]);
+            }
+            _ => b.emit(tri),
+        }
+    }
+    b.finish()
+}
+
+/// The cell at the midpoint of two adjacent cells of the same level.
+fn midpoint(a: Key, b: Key) -> Key {
+    Key::new(a.k + 1, a.i + b.i, a.j + b.j)
+}
+
+struct Builder<'a> {
+    h: &'a Hierarchy,
+    /// Dual vertex of each canonical centre.
+    index: FxHashMap<Key, u32>,
+    vertices: Vec<Point>,
+    triangles: Vec<[u32; 3]>,
+    used: Vec<bool>,
+}
+
+impl<'a> Builder<'a> {
+    fn new(h: &'a Hierarchy, placement: Placement) -> Builder<'a> {
+        let mut index = FxHashMap::default();
+        let mut vertices = Vec::new();
+        if placement == Placement::Relocated {
+            vertices = h.points.clone();
+            for key in h.occupied_sorted() {
+                if let [p] = h.occupants(key) {
+                    if h.is_full_leaf(key) {
+                        index.insert(key.canonical(), *p);
+                    }
+                }
+            }
+        }
+        let used = vec![false; vertices.len()];
+        Builder {
+            h,
+            index,
+            vertices,
+            triangles: Vec::new(),
+            used,
+        }
+    }
+
+    fn emit(&mut self, tri: [Key; 3]) {
+        if tri.iter().all(|c| c.inside()) {
+            let t = tri.map(|c| self.vertex(c));
+            self.triangles.push(t);
+        }
+    }
+
+    fn vertex(&mut self, cell: Key) -> u32 {
+        let key = cell.canonical();
+        if let Some(&v) = self.index.get(&key) {
+            self.used[v as usize] = true;
+            return v;
+        }
+        let v = self.vertices.len() as u32;
+        self.vertices.push(self.h.lattice.center(key));
+        self.used.push(true);
+        self.index.insert(key, v);
+        v
+    }
+
+    /// Drops vertices no triangle uses (points of an unfinished refinement, all of them in
+    /// `Plain` placement) and renumbers.
+    fn finish(self) -> TriMesh {
+        if self.used.iter().all(|&u| u) {
+            return TriMesh {
+                vertices: self.vertices,
+                triangles: self.triangles,
+            };
+        }
+        let mut map = vec![u32::MAX; self.vertices.len()];
+        let mut vertices = Vec::new();
+        for (v, &u) in self.used.iter().enumerate() {
+            if u {
+                map[v] = vertices.len() as u32;
+                vertices.push(self.vertices[v]);
+            }
+        }
+        let triangles = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| map[v as usize]))
+            .collect();
+        TriMesh {
+            vertices,
+            triangles,
+        }
+    }
+}
+
+/// The first triangle that is not strictly counter-clockwise under exact orientation, if any.
+pub fn first_inverted(mesh: &TriMesh) -> Option<usize> {
+    (0..mesh.triangles.len()).find(|&t| {
+        let [a, b, c] = mesh.corners(t);
+        orient2d(a, b, c) <= 0.0
+    })
+}

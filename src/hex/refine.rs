@@ -1,0 +1,81 @@
+//! The simple refinement of paper 000 Sec. 4.1: rules 1–5, applied to the hexagons on a work
+//! list of affected cells until the list is empty. Every subdivision queues only the cells
+//! around it, so the work is proportional to the output, not to (points × hexagons) as in the
+//! paper's proof of concept (Sec. 8).
+//!
+//! Rules 3–5 speak of "an occupied hexagon" and its neighbours; rule 4 is read the same way
+//! (applied to every hexagon it would refine the whole domain). The end state is the one the
+//! paper states: each occupied hexagon is a full hexagon holding one point, surrounded by a
+//! ring of full, unsubdivided, unoccupied hexagons.
+
+use crate::hex::lattice::Key;
+use crate::hex::subdivision::{Cell, Hierarchy, Stop};
+
+/// Runs the simple refinement to completion (or until a budget or the precision limit stops
+/// it). The root is always subdivided once: a dual needs at least one ring of hexagons.
+pub fn refine_simple(h: &mut Hierarchy) -> Result<(), Stop> {
+    h.subdivide(Key::ROOT)?;
+    let mut initial = h.occupied_sorted();
+    initial.reverse();
+    h.work.extend(initial);
+    while let Some(key) = h.work.pop() {
+        apply_rules(h, key)?;
+    }
+    Ok(())
+}
+
+/// Applies the first rule of 1–5 that fires on `key`; a subdivision re-queues the cells
+/// around it, `key` included, so the remaining rules are checked again later.
+fn apply_rules(h: &mut Hierarchy, key: Key) -> Result<(), Stop> {
+    if !h.is_occupied(key) {
+        return Ok(());
+    }
+    match h.cell(key) {
+        // Rules 1 and 2: an occupied semi-hexagon (by one point or several) becomes full by
+        // subdividing the hexagon across its long edge.
+        Cell::Semi { fin_of, .. } => h.subdivide(fin_of),
+        Cell::Full { subdivided: false } => {
+            // Rule 1: several points.
+            if h.occupants(key).len() > 1 {
+                return h.subdivide(key);
+            }
+            // Rule 3: an occupied neighbour (full, semi or fin).
+            for d in 0..6 {
+                let fin = key.edge_child(d);
+                let n = key.neighbor(d);
+                if (h.is_occupied(fin) && is_fin(h, fin)) || h.is_occupied(n) {
+                    return h.subdivide(key);
+                }
+            }
+            // Rule 4: a neighbour of lower level (a semi-hexagon): subdivide the full hexagon
+            // at its long edge, which joins it into a full hexagon.
+            let mut fired = false;
+            for d in 0..6 {
+                let n = key.neighbor(d);
+                if matches!(h.cell(n), Cell::Semi { .. } | Cell::Absent) {
+                    h.ensure_full(n)?;
+                    fired = true;
+                }
+            }
+            if fired {
+                h.work.push(key);
+                return Ok(());
+            }
+            // Rule 5: a neighbour of higher level (a fin of this hexagon).
+            for d in 0..6 {
+                if is_fin(h, key.edge_child(d)) {
+                    return h.subdivide(key);
+                }
+            }
+            Ok(())
+        }
+        _ => Ok(()),
+    }
+}
+
+/// True when the edge child `cell` of an unsubdivided hexagon is a fin of it: a semi-hexagon
+/// owned by the subdivided neighbour. A semi-hexagon "owned" by a cell outside the bounding
+/// hexagon is the outer half of a boundary cell and is no neighbour at all.
+fn is_fin(h: &Hierarchy, cell: Key) -> bool {
+    matches!(h.cell(cell), Cell::Semi { owner, .. } if owner.inside())
+}

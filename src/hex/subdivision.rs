@@ -266,7 +266,10 @@ impl Hierarchy {
 
     /// The child cell of the subdivided hexagon `parent` that `p` belongs to (module docs).
     pub fn locate_child(&self, parent: Key, p: Point) -> Key {
-        let children = parent.children();
+        // Children outside the bounding hexagon never hold points: a point that rounding puts
+        // just inside the constructed root edge still belongs to the boundary cell there.
+        let mut children = parent.children().to_vec();
+        children.retain(|c| c.inside());
         let guess = self.lattice.nearest(parent.k + 1, p);
         if children.contains(&guess) && self.strictly_inside(guess, p) {
             return guess;
@@ -280,7 +283,7 @@ impl Hierarchy {
         // Rounding of the constructed corners can leave a sliver of the parent outside every
         // constructed child; the nearest centre decides there (ties to the lower (i, j)).
         best.unwrap_or_else(|| {
-            let mut v = children.to_vec();
+            let mut v = children;
             v.sort_by(|a, b| {
                 let da = crate::geom::dist2(self.lattice.center(*a), p);
                 let db = crate::geom::dist2(self.lattice.center(*b), p);
@@ -335,6 +338,68 @@ impl Hierarchy {
         out.sort_by_key(|e| e.0);
         out.dedup_by_key(|e| e.0);
         out
+    }
+}
+
+impl Hierarchy {
+    /// Checks the structural invariants every state keeps (a sanity check for tests and the
+    /// fuzzer): each subdivided hexagon is a full hexagon whose neighbours inside the bounding
+    /// hexagon are full (the balancing rule of Sec. 3.3), and each point is held by the leaf
+    /// the point-location rule gives it. Returns the first violation.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        for key in self.subdivided_sorted() {
+            if !matches!(self.cell(key), Cell::Full { .. }) {
+                return Err(format!("subdivided {key:?} is not a full hexagon"));
+            }
+            for d in 0..6 {
+                let n = key.neighbor(d);
+                if !matches!(self.cell(n), Cell::Full { .. } | Cell::Outside) {
+                    return Err(format!(
+                        "subdivided {key:?} has neighbour {n:?} that is {:?}",
+                        self.cell(n)
+                    ));
+                }
+            }
+        }
+        for key in self.occupied_sorted() {
+            for &p in self.occupants(key) {
+                let leaf = self.leaf_of(self.points[p as usize]);
+                if leaf != key {
+                    return Err(format!("point {p} is held by {key:?}, located in {leaf:?}"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the end state of the simple refinement (Sec. 4.1): every occupied hexagon is a
+    /// full hexagon holding one point, surrounded by full, unsubdivided, unoccupied hexagons.
+    pub fn check_refined(&self) -> Result<(), String> {
+        for key in self.occupied_sorted() {
+            if !self.is_full_leaf(key) {
+                return Err(format!("occupied {key:?} is {:?}", self.cell(key)));
+            }
+            if self.occupants(key).len() != 1 {
+                return Err(format!(
+                    "{key:?} holds {} points",
+                    self.occupants(key).len()
+                ));
+            }
+            for d in 0..6 {
+                let n = key.neighbor(d);
+                if !n.inside() {
+                    continue;
+                }
+                if !self.is_full_leaf(n) || self.is_occupied(n) {
+                    return Err(format!(
+                        "occupied {key:?} has neighbour {n:?}: {:?}, occupied {}",
+                        self.cell(n),
+                        self.is_occupied(n)
+                    ));
+                }
+            }
+        }
+        Ok(())
     }
 }
 

@@ -61,3 +61,104 @@ fn a_single_point_gives_a_ring_of_triangles() {
     let run = assert_simple_bounds(&Pslg::from_points(vec![[3.0, 4.0]]));
     assert!(run.mesh.triangles.len() >= 6);
 }
+
+#[test]
+fn a_step_budget_stops_early_with_a_valid_plain_mesh() {
+    let input = Pslg::from_points(uniform(500, 9));
+    let budget = hexmesh::Budget {
+        max_steps: Some(40),
+        ..hexmesh::Budget::default()
+    };
+    let run = HexSimple
+        .mesh(&input, &Params::default().with_budget(budget))
+        .expect("a budget is not an error");
+    assert!(!run.complete);
+    assert!(run
+        .stop_reason
+        .as_deref()
+        .unwrap_or("")
+        .contains("step budget"));
+    assert!(run.steps <= 40);
+    // Not every input point is a vertex yet, so check the mesh without the point mapping.
+    check_mesh(&run.mesh, &[], Some((30.0, 120.0))).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn a_vertex_budget_stops_early() {
+    let input = Pslg::from_points(uniform(500, 10));
+    let budget = hexmesh::Budget {
+        max_vertices: Some(300),
+        ..hexmesh::Budget::default()
+    };
+    let run = HexSimple
+        .mesh(&input, &Params::default().with_budget(budget))
+        .expect("a budget is not an error");
+    assert!(!run.complete);
+    assert!(run.mesh.vertices.len() < 1000);
+}
+
+#[test]
+fn segments_points_outside_the_hexagon_and_unresolvable_pairs_are_refused() {
+    let seg = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.0]],
+        segments: vec![[0, 1]],
+        ..Pslg::default()
+    };
+    assert!(matches!(
+        HexSimple.mesh(&seg, &Params::default()),
+        Err(hexmesh::Error::Mesher { .. })
+    ));
+    let outside = Pslg {
+        points: vec![[0.0, 0.0], [2.0, 0.0]],
+        hexagon: Some(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    let err = HexSimple.mesh(&outside, &Params::default()).unwrap_err();
+    assert!(err.to_string().contains("point 1"), "{err}");
+    let close = Pslg::from_points(vec![[0.5, 0.5], [0.5 + 1e-12, 0.5], [0.0, 0.0]]);
+    assert!(matches!(
+        HexSimple.mesh(&close, &Params::default()),
+        Err(hexmesh::Error::Input {
+            problem: hexmesh::InputError::Range { .. },
+            ..
+        })
+    ));
+    let nan = Pslg::from_points(vec![[f64::NAN, 0.0]]);
+    assert!(HexSimple.mesh(&nan, &Params::default()).is_err());
+}
+
+#[test]
+fn the_same_input_gives_the_same_mesh_bit_for_bit() {
+    let input = Pslg::from_points(uniform(300, 11));
+    let a = HexSimple.mesh(&input, &Params::default()).unwrap().mesh;
+    let b = HexSimple.mesh(&input, &Params::default()).unwrap().mesh;
+    assert_eq!(a, b);
+}
+
+#[test]
+fn the_hexagon_picture_draws_cells_the_dual_and_the_points() {
+    let input = Pslg {
+        points: vec![[-0.01, 0.0], [0.01, 0.0]],
+        hexagon: Some(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    let dir = std::env::temp_dir().join(format!("hexmesh-picture-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("close-pair.svg");
+    hexmesh::hex::write_hexagons_svg(&input, &Params::default(), &path).unwrap();
+    let svg = std::fs::read_to_string(&path).unwrap();
+    std::fs::remove_dir_all(&dir).ok();
+    let run = HexSimple.mesh(&input, &Params::default()).unwrap();
+    assert!(svg.starts_with("<svg"));
+    assert!(svg.contains("#f7b267"), "occupied hexagons are drawn");
+    assert!(svg.contains("#cfe3f7"), "semi-hexagons are drawn");
+    assert_eq!(svg.matches("<circle").count(), 2);
+    // One polygon per triangle in the dual group, plus the cells and the root outline.
+    assert!(svg.matches("<polygon").count() > run.mesh.triangles.len());
+}

@@ -85,8 +85,11 @@ struct Builder<'a> {
 
 impl<'a> Builder<'a> {
     fn new(h: &'a Hierarchy, placement: Placement) -> Builder<'a> {
-        let mut index = FxHashMap::default();
-        let mut vertices = Vec::new();
+        // About one vertex per full leaf and two triangles per vertex: reserving avoids
+        // rehashing a table of millions of entries.
+        let expected = h.full_leaves + h.points.len();
+        let mut index = FxHashMap::with_capacity_and_hasher(expected, Default::default());
+        let mut vertices = Vec::with_capacity(expected);
         if placement == Placement::Relocated {
             vertices = h.points.clone();
             for key in h.occupied_sorted() {
@@ -102,7 +105,7 @@ impl<'a> Builder<'a> {
             h,
             index,
             vertices,
-            triangles: Vec::new(),
+            triangles: Vec::with_capacity(2 * expected),
             used,
         }
     }

@@ -261,7 +261,8 @@ impl Hasher for FxHasher {
     }
 
     fn finish(&self) -> u64 {
-        self.0
+        // The table indexes by the low bits, which a multiplication leaves poorly mixed.
+        self.0.rotate_left(26)
     }
 }
 

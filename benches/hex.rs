@@ -9,7 +9,7 @@ use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
 fn plane(n: usize) -> Pslg {
-    let mut rng = Pcg64::seed_from_u64(0x706c_616e_65 + n as u64);
+    let mut rng = Pcg64::seed_from_u64(0x0070_6c61_6e65 + n as u64);
     let pts: Vec<Point> = (0..n)
         .map(|_| [rng.random::<f64>(), rng.random::<f64>()])
         .collect();

@@ -28,7 +28,18 @@ pub enum Placement {
 
 /// The dual mesh of the hierarchy's current subdivision.
 pub fn extract(h: &Hierarchy, placement: Placement) -> TriMesh {
-    let mut b = Builder::new(h, placement);
+    extract_moved(h, placement, &FxHashMap::default()).0
+}
+
+/// The dual mesh with the centres in `moved` (keyed by `Key::canonical`) placed there instead
+/// of at the lattice centre (Sec. 5.4), and the canonical key of each vertex (input points
+/// carry the key of their hexagon).
+pub fn extract_moved(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+) -> (TriMesh, Vec<Key>) {
+    let mut b = Builder::new(h, placement, moved);
     let mut stack: Vec<[Key; 3]> = Vec::new();
     // The six lattice triangles around the root, counter-clockwise because the lattice
     // directions are listed counter-clockwise.
@@ -76,6 +87,9 @@ fn midpoint(a: Key, b: Key) -> Key {
 
 struct Builder<'a> {
     h: &'a Hierarchy,
+    moved: &'a FxHashMap<Key, Point>,
+    /// Canonical key of each vertex.
+    keys: Vec<Key>,
     /// Dual vertex of each canonical centre.
     index: FxHashMap<Key, u32>,
     vertices: Vec<Point>,
@@ -84,7 +98,11 @@ struct Builder<'a> {
 }
 
 impl<'a> Builder<'a> {
-    fn new(h: &'a Hierarchy, placement: Placement) -> Builder<'a> {
+    fn new(
+        h: &'a Hierarchy,
+        placement: Placement,
+        moved: &'a FxHashMap<Key, Point>,
+    ) -> Builder<'a> {
         // About one vertex per full leaf and two triangles per vertex: reserving avoids
         // rehashing a table of millions of entries.
         let expected = h.full_leaves + h.points.len();
@@ -101,8 +119,14 @@ impl<'a> Builder<'a> {
             }
         }
         let used = vec![false; vertices.len()];
+        let mut keys = vec![Key::ROOT; vertices.len()];
+        for (&key, &v) in &index {
+            keys[v as usize] = key;
+        }
         Builder {
             h,
+            moved,
+            keys,
             index,
             vertices,
             triangles: Vec::with_capacity(2 * expected),
@@ -124,7 +148,12 @@ impl<'a> Builder<'a> {
             return v;
         }
         let v = self.vertices.len() as u32;
-        self.vertices.push(self.h.lattice.center(key));
+        let p = match self.moved.get(&key) {
+            Some(&p) => p,
+            None => self.h.lattice.center(key),
+        };
+        self.vertices.push(p);
+        self.keys.push(key);
         self.used.push(true);
         self.index.insert(key, v);
         v
@@ -132,19 +161,22 @@ impl<'a> Builder<'a> {
 
     /// Drops vertices no triangle uses (points of an unfinished refinement, all of them in
     /// `Plain` placement) and renumbers.
-    fn finish(self) -> TriMesh {
+    fn finish(self) -> (TriMesh, Vec<Key>) {
         if self.used.iter().all(|&u| u) {
-            return TriMesh {
+            let mesh = TriMesh {
                 vertices: self.vertices,
                 triangles: self.triangles,
             };
+            return (mesh, self.keys);
         }
         let mut map = vec![u32::MAX; self.vertices.len()];
         let mut vertices = Vec::new();
+        let mut keys = Vec::new();
         for (v, &u) in self.used.iter().enumerate() {
             if u {
                 map[v] = vertices.len() as u32;
                 vertices.push(self.vertices[v]);
+                keys.push(self.keys[v]);
             }
         }
         let triangles = self
@@ -152,10 +184,13 @@ impl<'a> Builder<'a> {
             .iter()
             .map(|t| t.map(|v| map[v as usize]))
             .collect();
-        TriMesh {
-            vertices,
-            triangles,
-        }
+        (
+            TriMesh {
+                vertices,
+                triangles,
+            },
+            keys,
+        )
     }
 }
 

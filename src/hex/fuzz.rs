@@ -82,6 +82,7 @@ pub fn fuzz_campaign(
     };
     let m: Box<dyn Mesher> = match mesher {
         "hex-simple" => Box::new(super::HexSimple),
+        "hex" => Box::new(super::extended::Hex),
         other => match crate::registry::mesher(other) {
             Ok(m) => m,
             Err(e) => {

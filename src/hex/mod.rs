@@ -11,7 +11,9 @@
 //! - `picture`: SVG of the hexagons with the dual over them (Figs. 3, 4, 7).
 //! - `fuzz`: a seeded campaign that checks the promised bounds on random point sets.
 
+pub mod classify;
 pub mod dual;
+pub mod extended;
 pub mod fuzz;
 pub mod lattice;
 pub mod picture;

@@ -18,6 +18,11 @@ pub fn refine_simple(h: &mut Hierarchy) -> Result<(), Stop> {
     let mut initial = h.occupied_sorted();
     initial.reverse();
     h.work.extend(initial);
+    drain(h)
+}
+
+/// Applies rules 1–5 to the queued cells until the work list is empty.
+pub fn drain(h: &mut Hierarchy) -> Result<(), Stop> {
     while let Some(key) = h.work.pop() {
         apply_rules(h, key)?;
     }
@@ -76,6 +81,6 @@ fn apply_rules(h: &mut Hierarchy, key: Key) -> Result<(), Stop> {
 /// True when the edge child `cell` of an unsubdivided hexagon is a fin of it: a semi-hexagon
 /// owned by the subdivided neighbour. A semi-hexagon "owned" by a cell outside the bounding
 /// hexagon is the outer half of a boundary cell and is no neighbour at all.
-fn is_fin(h: &Hierarchy, cell: Key) -> bool {
+pub fn is_fin(h: &Hierarchy, cell: Key) -> bool {
     matches!(h.cell(cell), Cell::Semi { owner, .. } if owner.inside())
 }

@@ -298,7 +298,8 @@ impl Hierarchy {
         (0..6).all(|m| orient2d(c[m], c[(m + 1) % 6], p) > 0.0)
     }
 
-    fn closed_contains(&self, key: Key, p: Point) -> bool {
+    /// True when `p` lies in the closed constructed hexagon of cell `key` (exact).
+    pub fn closed_contains(&self, key: Key, p: Point) -> bool {
         let c = self.lattice.corners(key);
         (0..6).all(|m| orient2d(c[m], c[(m + 1) % 6], p) >= 0.0)
     }

@@ -6,8 +6,11 @@
 
 pub mod error;
 pub mod geom;
+pub mod isolate;
+pub mod maxangle;
 pub mod mesh;
 pub mod mesher;
+pub mod reference;
 pub mod registry;
 
 pub use error::{Error, InputError, Result};

@@ -6,7 +6,10 @@ use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![]
+    vec![
+        Box::new(crate::reference::TriangleMesher),
+        Box::new(crate::reference::SpadeMesher),
+    ]
 }
 
 /// The names of the registered meshers, in report order.

@@ -35,8 +35,11 @@ const NAME: &str = "spade";
 /// Spade's default minimum angle when none is requested (`RefinementParameters::new`).
 pub const DEFAULT_MIN_ANGLE: f64 = 30.0;
 
-/// Spade's default vertex budget: refinement may add 10 × the initial vertex count.
-pub const DEFAULT_EXTRA_VERTEX_FACTOR: usize = 10;
+/// The vertex budget when `Params` sets none: spade's own default of 10 × the initial vertex
+/// count, raised to at least this many. Spade's default alone stops small inputs early
+/// (8 points of a square with a hole may add only 80 vertices, too few for an area bound),
+/// which would count as a failure that is the budget's, not the algorithm's.
+pub const MIN_DEFAULT_EXTRA_VERTICES: usize = 1_000_000;
 
 /// spade's refinement as a `Mesher`.
 #[derive(Debug, Clone, Copy, Default)]
@@ -47,7 +50,7 @@ pub struct SpadeMesher;
 struct Effective {
     min_angle: f64,
     max_area: Option<f64>,
-    /// `None`: spade's own default of 10 × the initial vertex count.
+    /// `None`: no budget in `Params`, so the default (see `default_extra_vertices`).
     max_additional_vertices: Option<usize>,
 }
 
@@ -95,7 +98,7 @@ impl Mesher for SpadeMesher {
             (Some(v), _) => format!("max_additional_vertices={v} - initial vertices"),
             (None, Some(n)) => format!("max_additional_vertices={n}"),
             (None, None) => format!(
-                "max_additional_vertices={DEFAULT_EXTRA_VERTEX_FACTOR}*initial vertices (spade default)"
+                "max_additional_vertices=max(10*initial vertices, {MIN_DEFAULT_EXTRA_VERTICES})"
             ),
         };
         let time = if params.budget.max_time.is_some() {
@@ -143,6 +146,10 @@ impl Mesher for SpadeMesher {
     }
 }
 
+fn default_extra_vertices(initial: usize) -> usize {
+    initial.saturating_mul(10).max(MIN_DEFAULT_EXTRA_VERTICES)
+}
+
 type Outcome = (TriMesh, bool, Option<String>, u64);
 
 fn mesh_domain(domain: &Pslg, params: &Params) -> Result<Outcome> {
@@ -186,21 +193,18 @@ fn mesh_domain(domain: &Pslg, params: &Params) -> Result<Outcome> {
     if let Some(a) = e.max_area {
         rp = rp.with_max_allowed_area(a);
     }
-    if let Some(n) = e.max_additional_vertices {
-        rp = rp.with_max_additional_vertices(n);
-    }
+    let limit = e
+        .max_additional_vertices
+        .unwrap_or_else(|| default_extra_vertices(initial));
+    rp = rp.with_max_additional_vertices(limit);
     let result = cdt.refine(rp);
     let added = cdt.num_vertices() - initial;
 
     let seeds = locate_seeds(&cdt, &domain.holes, false)?;
     let removed = removed_faces(&cdt, &seeds);
     let mesh = extract(&cdt, &removed, domain.points.len());
-    let stop_reason = (!result.refinement_complete).then(|| {
-        let limit = e
-            .max_additional_vertices
-            .unwrap_or(initial.saturating_mul(DEFAULT_EXTRA_VERTEX_FACTOR));
-        format!("vertex budget exhausted: spade added its maximum of {limit} vertices")
-    });
+    let stop_reason = (!result.refinement_complete)
+        .then(|| format!("vertex budget exhausted: spade added its maximum of {limit} vertices"));
     Ok((mesh, result.refinement_complete, stop_reason, added as u64))
 }
 

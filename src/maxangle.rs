@@ -1,6 +1,6 @@
-//! The maximum-angle protocol of the paper's Sec. 8 (paper 000, "Results"): ask a mesher for
-//! a minimum angle of 20°, then 20° + step, ... until it fails, and report the last angle it
-//! met. A step fails on an error, a budget stop, a timeout, an invalid mesh, or a mesh whose
+//! The maximum-angle protocol of paper 000 Sec. 8 "Results" (Table 1: "we increase the angle
+//! by 0.25 degrees step by step until the program fails"): ask a mesher for a minimum angle
+//! of 20°, then 20° + step, ... until it fails, and report the last angle it met. A step fails on an error, a budget stop, a timeout, an invalid mesh, or a mesh whose
 //! measured smallest angle is below the request by more than 1e-6° (DESIGN.md "Checks").
 //! Every step runs isolated (`isolate::run_isolated`), since a reference may hang or exit.
 
@@ -90,6 +90,7 @@ pub fn max_angle(
         )));
     }
     input.validate_input()?;
+    crate::registry::mesher(mesher)?;
     let mut best: Option<(f64, f64, usize, f64)> = None;
     let mut attempts = 0;
     for k in 0u32.. {
@@ -100,7 +101,9 @@ pub fn max_angle(
         attempts += 1;
         let params = Params::default().with_min_angle(angle);
         let failure = match run_isolated(exe, mesher, input, &params, timeout) {
-            Err(e) => Some(format!("error: {e}")),
+            // The mesher failing is the answer; not finding the binary is the caller's error.
+            Err(Error::Mesher { message, .. }) => Some(format!("error: {message}")),
+            Err(e) => return Err(e),
             Ok(iso) if !iso.run.complete => Some(
                 iso.run
                     .stop_reason

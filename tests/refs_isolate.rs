@@ -190,3 +190,26 @@ fn max_angle_of_a_small_point_set_is_plausible_for_triangle_and_spade() {
         eprintln!("{r}");
     }
 }
+
+#[test]
+fn max_angle_refuses_a_bad_step_an_unknown_mesher_and_a_missing_binary() {
+    let input = point_set(5);
+    let t = Duration::from_secs(2);
+    assert!(max_angle(exe(), "spade", &input, 0.0, t, 20.0).is_err());
+    assert!(max_angle(exe(), "spade", &input, f64::NAN, t, 20.0).is_err());
+    assert!(matches!(
+        max_angle(exe(), "nope", &input, 0.25, t, 20.0),
+        Err(Error::UnknownMesher { .. })
+    ));
+    assert!(matches!(
+        max_angle(
+            Path::new("/nonexistent/hexmesh"),
+            "spade",
+            &input,
+            0.25,
+            t,
+            20.0
+        ),
+        Err(Error::Io { .. })
+    ));
+}

@@ -195,3 +195,35 @@ fn bad_input_is_an_error_not_a_crash() {
     assert!(mesher("spade").unwrap().mesh(&point_set(), &p).is_err());
     assert!(mesher("triangle").unwrap().mesh(&point_set(), &p).is_err());
 }
+
+#[test]
+fn the_close_pair_and_collinear_points_mesh_at_30_degrees() {
+    // DESIGN.md "close-pair": the bounding hexagon is the given unit hexagon, not fitted.
+    let close_pair = Pslg {
+        points: vec![[-0.01, 0.0], [0.01, 0.0]],
+        hexagon: Some(hexmesh::Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    let line = Pslg::from_points(
+        (0..100)
+            .map(|i| {
+                let t = (f64::from(i) * 0.618_033_988_749_895).fract();
+                [t, 0.37 * t]
+            })
+            .collect(),
+    );
+    for input in [close_pair, line] {
+        let area = input.bounding_hexagon().area();
+        for name in ["spade", "triangle"] {
+            let run = mesher(name)
+                .unwrap()
+                .mesh(&input, &Params::default().with_min_angle(30.0))
+                .unwrap();
+            assert_good_mesh(name, &input, &run, 30.0);
+            assert!((run.mesh.area() - area).abs() < 1e-9 * area, "{name}");
+        }
+    }
+}

@@ -139,13 +139,16 @@ impl Mesher for TriangleMesher {
                 "a PSLG needs at least three segments to bound a region",
             ));
         }
-        if domain.points.len() > i32::MAX as usize / 4
-            || domain.segments.len() > i32::MAX as usize / 4
-            || domain.holes.len() > i32::MAX as usize / 4
+        // Triangle computes buffer sizes in `int` bytes (points × 2 × 8 and the like),
+        // which overflows beyond 2^31 / 16 items.
+        let limit = i32::MAX as usize / 16;
+        if domain.points.len() > limit
+            || domain.segments.len() > limit
+            || domain.holes.len() > limit
         {
             return Err(Error::mesher(
                 NAME,
-                "input too large for Triangle's int indices",
+                format!("input too large for Triangle's int sizes (at most {limit} points)"),
             ));
         }
         let tritet_err = |e: &str| Error::mesher(NAME, format!("tritet: {e}"));

@@ -12,6 +12,12 @@
 //! outside plus the regions around hole seeds. Spade's exclusion is used during refinement
 //! only when it excludes nothing this rule keeps (otherwise kept faces would go unrefined);
 //! the output is always cut by this rule, with a flood fill across non-segment edges.
+//!
+//! Budget: one spade step inserts one vertex, so `max_steps` and `max_vertices` (minus the
+//! initial vertices) both become `max_additional_vertices`, the smaller one winning; an
+//! exhausted budget is `complete == false` (spade's `refinement_complete`). Spade has no
+//! clock: `max_time` is left to `isolate::run_isolated`'s timeout. Spade panics (it asserts
+//! and expects inside `refine`) are caught and returned as this mesher's error.
 
 use std::collections::VecDeque;
 use std::panic::{catch_unwind, AssertUnwindSafe};

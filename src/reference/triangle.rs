@@ -239,6 +239,14 @@ mod tests {
     }
 
     #[test]
+    fn an_area_on_a_rounding_tie_prints_as_glibcs_printf_does() {
+        // 2^-16 = 0.0000152587890625 ends in a tie at 15 decimals; glibc's "%.15f" rounds it
+        // to even, and so must the string documented here.
+        let p = Params::default().with_max_area(1.0 / 65536.0);
+        assert_eq!(triangle_switches(&p).unwrap(), "pzAQa0.000015258789062q");
+    }
+
+    #[test]
     fn zero_angle_is_not_sent_as_a_bare_q() {
         let p = Params::default().with_min_angle(0.0);
         assert_eq!(triangle_switches(&p).unwrap(), "pzAQaq0.000000000000001");

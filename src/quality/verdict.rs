@@ -195,7 +195,7 @@ fn number(v: Option<f64>) -> String {
     match v {
         None => "-".to_string(),
         Some(v) if v.fract() == 0.0 && v.abs() < 1e15 => format!("{v:.0}"),
-        Some(v) => format!("{v:.6}"),
+        Some(v) => format!("{v:.7}"),
     }
 }
 

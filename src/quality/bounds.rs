@@ -158,7 +158,7 @@ mod tests {
         assert!((HEX_MIN_EDGE_OVER_DMIN - edge).abs() < 1e-15, "{edge}");
         // Right triangle with legs 5 and 3√3: R/(2r) = c / (2(a + b − c)).
         let (a, b) = (5.0, 3.0 * 3f64.sqrt());
-        let c = (a * a + b * b as f64).sqrt();
+        let c = (a * a + b * b).sqrt();
         let rr = c / (2.0 * (a + b - c));
         assert!(
             rr <= HEX_MAX_RADIUS_RATIO && HEX_MAX_RADIUS_RATIO - rr < 1e-6,

@@ -101,10 +101,12 @@ pub enum Violation {
     },
     /// The triangle areas do not sum to the area the boundary loops enclose.
     AreaMismatch { triangles: f64, enclosed: f64 },
-    /// A mesh that must be one disc has several boundary loops (a hole, or pieces).
+    /// A mesh that must be one disc has several boundary loops (a hole, or pieces), or its
+    /// boundary touches itself at a vertex (a hole reaching the boundary at a corner).
     HoleInMesh {
         loops: usize,
         first_vertices: Vec<u32>,
+        pinched_at: Vec<u32>,
     },
     /// An input point is not a mesh vertex (bit-exact comparison).
     MissingInputPoint { input: usize, point: Point },
@@ -247,10 +249,17 @@ impl fmt::Display for Violation {
             Violation::HoleInMesh {
                 loops,
                 first_vertices,
-            } => write!(
-                f,
-                "hole in the mesh: {loops} boundary loops (starting at vertices {first_vertices:?}) where the mesh of a point set must be one disc"
-            ),
+                pinched_at,
+            } => {
+                write!(
+                    f,
+                    "hole in the mesh: {loops} boundary loops (starting at vertices {first_vertices:?})"
+                )?;
+                if !pinched_at.is_empty() {
+                    write!(f, ", touching at vertices {pinched_at:?},")?;
+                }
+                write!(f, " where the mesh of a point set must be one disc")
+            }
             Violation::MissingInputPoint { input, point } => {
                 write!(f, "input point {input} {} is not a mesh vertex", pt(*point))
             }
@@ -485,11 +494,21 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
     overlaps(verts, &boundary, &loops, &mut out);
     folds(mesh, &topo, &geometric, &mut out);
     area_balance(mesh, &geometric, &boundary, &mut out);
-    if opts.single_component && loops.len() > 1 {
-        out.push(Violation::HoleInMesh {
-            loops: loops.len(),
-            first_vertices: loops.iter().map(|l| boundary[l.edges[0]].from).collect(),
-        });
+    if opts.single_component {
+        // Several boundary edges leaving one vertex: the boundary touches itself there.
+        let mut pinched_at: Vec<u32> = boundary
+            .windows(2)
+            .filter(|w| w[0].from == w[1].from)
+            .map(|w| w[0].from)
+            .collect();
+        pinched_at.dedup();
+        if loops.len() > 1 || !pinched_at.is_empty() {
+            out.push(Violation::HoleInMesh {
+                loops: loops.len(),
+                first_vertices: loops.iter().map(|l| boundary[l.edges[0]].from).collect(),
+                pinched_at,
+            });
+        }
     }
 
     if let Some(input) = input {

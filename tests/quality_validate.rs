@@ -201,3 +201,73 @@ fn violations_read_with_indices_and_coordinates() {
     let json = serde_json::to_string(&v[0]).expect("json");
     assert!(json.starts_with("{\"kind\":\"clockwise\""), "{json}");
 }
+
+#[test]
+fn results_do_not_change_with_scale_or_a_far_offset() {
+    // Powers of two keep every coordinate exact, so the answers must be the same.
+    let fold = mesh(
+        &[
+            [0.0, 0.0],
+            [10.0, 0.0],
+            [-8.0, 6.0],
+            [3.0, -9.0],
+            [3.0, 9.0],
+            [-8.0, -6.0],
+        ],
+        &[[0, 1, 2], [0, 2, 3], [0, 3, 4], [0, 4, 5], [0, 5, 1]],
+    );
+    let ring_and_square = mesh(
+        &[
+            [0.0, 0.0],
+            [3.0, 0.0],
+            [3.0, 3.0],
+            [0.0, 3.0],
+            [1.0, 1.0],
+            [2.0, 1.0],
+            [2.0, 2.0],
+            [1.0, 2.0],
+        ],
+        &[
+            [0, 1, 5],
+            [0, 5, 4],
+            [1, 2, 6],
+            [1, 6, 5],
+            [2, 3, 7],
+            [2, 7, 6],
+            [3, 0, 4],
+            [3, 4, 7],
+            [4, 5, 6],
+            [4, 6, 7],
+        ],
+    );
+    for exp in [-40, 0, 40] {
+        let s = 2f64.powi(exp);
+        for offset in [0.0, 2f64.powi(50) * s] {
+            let moved = |m: &TriMesh| TriMesh {
+                vertices: m
+                    .vertices
+                    .iter()
+                    .map(|p| [p[0] * s + offset, p[1] * s - offset])
+                    .collect(),
+                triangles: m.triangles.clone(),
+            };
+            let v = validate(&moved(&fold), None, &ONE_DISC);
+            assert!(
+                v.iter().any(|x| matches!(
+                    x,
+                    Violation::Fold {
+                        vertex: 0,
+                        winding: 2,
+                        ..
+                    }
+                )),
+                "scale 2^{exp}, offset {offset}: {v:#?}"
+            );
+            assert_eq!(
+                validate(&moved(&ring_and_square), None, &ONE_DISC),
+                vec![],
+                "scale 2^{exp}, offset {offset}"
+            );
+        }
+    }
+}

@@ -742,6 +742,19 @@ fn ray_crossing(p: Point, q: Point, a: Point, b: Point) -> i64 {
     }
 }
 
+/// `ray_crossing` for the ray from `p` towards +x, where "left of the ray" is "above p":
+/// a y comparison, so it needs no second point on the ray (which p.x + 1 may not give).
+fn horizontal_crossing(p: Point, a: Point, b: Point) -> i64 {
+    let (above_a, above_b) = (a[1] > p[1], b[1] > p[1]);
+    if !above_a && above_b && orient2d(a, b, p) > 0.0 {
+        1
+    } else if above_a && !above_b && orient2d(a, b, p) < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
 /// The covering number just left of each tested boundary edge must be 1. Along a loop that
 /// touches no other loop, that side is one region, so its longest edge stands for all of it;
 /// loops through a shared vertex are tested edge by edge.
@@ -767,8 +780,12 @@ fn overlaps(
         for k in tested {
             let (a, b) = (p(boundary[k].from), p(boundary[k].to));
             let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
-            // A ray leaving the edge to its left, along the left normal.
-            let q = [m[0] - (b[1] - a[1]), m[1] + (b[0] - a[0])];
+            // A ray leaving the edge to its left, along the left normal, long enough that
+            // adding it to m does not round away its direction.
+            let normal = [-(b[1] - a[1]), b[0] - a[0]];
+            let stretch =
+                (m[0].abs().max(m[1].abs()) / normal[0].abs().max(normal[1].abs())).max(1.0);
+            let q = [m[0] + stretch * normal[0], m[1] + stretch * normal[1]];
             if m == a || m == b || orient2d(a, b, q) <= 0.0 {
                 continue; // too short or too large to place a probe; nothing to decide with
             }
@@ -821,9 +838,8 @@ fn folds(mesh: &TriMesh, topo: &Topology, geometric: &[bool], out: &mut Vec<Viol
             let v = tri[k] as usize;
             let (a, b) = (tri[(k + 1) % 3] as usize, tri[(k + 2) % 3] as usize);
             let c = mesh.vertices[v];
-            let q = [c[0] + 1.0, c[1]];
             seen[v] = true;
-            winding[v] += ray_crossing(c, q, mesh.vertices[a], mesh.vertices[b]);
+            winding[v] += horizontal_crossing(c, mesh.vertices[a], mesh.vertices[b]);
         }
     }
     for v in 0..n {

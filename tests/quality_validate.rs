@@ -271,3 +271,30 @@ fn results_do_not_change_with_scale_or_a_far_offset() {
         }
     }
 }
+
+#[test]
+fn nan_and_infinite_coordinates_are_reported_without_panicking() {
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let mut m = mesh(
+            &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.5]],
+            &[[0, 1, 4], [1, 2, 4], [2, 3, 4], [3, 0, 4]],
+        );
+        m.vertices[4] = [bad, 0.5];
+        let input = Pslg {
+            points: vec![[0.0, 0.0], [bad, 0.5], [1.0, 1.0]],
+            segments: vec![[0, 1], [0, 2]],
+            ..Pslg::default()
+        };
+        let v = validate(&m, Some(&input), &ONE_DISC);
+        assert!(
+            v.iter()
+                .any(|x| matches!(x, Violation::NonFiniteVertex { vertex: 4, .. })),
+            "{v:#?}"
+        );
+        let hex = Bounds::parse("hex").expect("hex");
+        let out = verdict(&m, Some(&input), Some(&hex));
+        assert!(!out.passed());
+        serde_json::to_string(&out).expect("non-finite numbers still serialize");
+        let _ = out.to_string();
+    }
+}

@@ -209,6 +209,12 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
         // incircle wants a counter-clockwise triangle; a flipped one is validate's business,
         // but the sign must still mean "inside".
         let (pu, pv, p1, p2) = (p(u), p(v), p(w1), p(w2));
+        if [pu, pv, p1, p2]
+            .iter()
+            .any(|q| !q[0].is_finite() || !q[1].is_finite())
+        {
+            continue; // no circle to test; validate reports the coordinate
+        }
         let o = orient2d(pu, pv, p1);
         let inside = if o > 0.0 {
             incircle(pu, pv, p1, p2) > 0.0

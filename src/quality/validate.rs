@@ -400,8 +400,9 @@ pub(crate) fn topology(mesh: &TriMesh) -> Topology {
     topo
 }
 
-/// Checks every invariant and returns every violation found, in a fixed order (by kind, then
-/// by index). An empty result means the mesh is valid.
+/// Checks every invariant and returns every violation found, in a fixed order: vertex
+/// coordinates, triangles, edges, duplicates, unreferenced vertices, boundary, input; by
+/// index within each. An empty result means the mesh is valid.
 pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) -> Vec<Violation> {
     let mut out = Vec::new();
     let verts = &mesh.vertices;

@@ -606,14 +606,18 @@ fn boundary_loops(
     let fan_successor = |e: &DirectedEdge| -> Option<usize> {
         let v = e.to;
         let mut t = e.triangle;
-        for _ in 0..=mesh.triangles.len() {
+        // Each step is a bijection between the triangles at v (every directed interior
+        // edge names one triangle), so the walk ends at a boundary edge or comes back.
+        loop {
             let w = next_corner(t, v)?;
             if let Some(k) = boundary_index(v, w) {
                 return Some(k);
             }
             t = twin_triangle(w, v)?;
+            if t == e.triangle {
+                return None;
+            }
         }
-        None
     };
 
     let first_out = |v: u32| boundary.partition_point(|e| e.from < v);
@@ -790,6 +794,8 @@ fn overlaps(
             if m == a || m == b || orient2d(a, b, q) <= 0.0 {
                 continue; // too short or too large to place a probe; nothing to decide with
             }
+            // m is within rounding of the edge; only a boundary edge passing within that
+            // distance of the midpoint (boundaries touching to an ulp) could mislead the count.
             let covering: i64 = boundary
                 .iter()
                 .enumerate()

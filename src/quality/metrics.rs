@@ -317,7 +317,7 @@ pub(crate) fn near_segment_triangles(mesh: &TriMesh, input: &Pslg, band: f64) ->
     };
     let all: Vec<Point> = tris.iter().flat_map(|&t| mesh.corners(t)).collect();
     let (lo, hi) = bbox(&all);
-    let side = (tris.len() as f64).sqrt().ceil().clamp(1.0, 1024.0) as usize;
+    let side = (tris.len() as f64).sqrt().ceil().clamp(1.0, 512.0) as usize;
     let cell = [
         ((hi[0] - lo[0]) / side as f64).max(f64::MIN_POSITIVE),
         ((hi[1] - lo[1]) / side as f64).max(f64::MIN_POSITIVE),
@@ -339,11 +339,22 @@ pub(crate) fn near_segment_triangles(mesh: &TriMesh, input: &Pslg, band: f64) ->
             }
         }
     }
+    let half_diagonal = 0.5 * cell[0].hypot(cell[1]);
     let mut near = vec![false; mesh.triangles.len()];
     for &(a, b) in &segments {
         let (slo, shi) = bbox(&[a, b]);
         for i in cell_of(slo[0] - band, 0)..=cell_of(shi[0] + band, 0) {
             for j in cell_of(slo[1] - band, 1)..=cell_of(shi[1] + band, 1) {
+                // A triangle within `band` has a point in some cell it is filed under, and
+                // that cell's centre is within half a diagonal of the point: skip cells
+                // farther than that, so a long diagonal segment visits a strip, not its box.
+                let centre = [
+                    lo[0] + (i as f64 + 0.5) * cell[0],
+                    lo[1] + (j as f64 + 0.5) * cell[1],
+                ];
+                if point_segment(centre, a, b) > (half_diagonal + band) * (1.0 + 1e-6) {
+                    continue;
+                }
                 for &t in &grid[i * side + j] {
                     if !near[t] && triangle_near_segment(mesh.corners(t), a, b, band) {
                         near[t] = true;
@@ -391,16 +402,6 @@ fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
     if band <= 0.0 {
         return false;
     }
-    let point_segment = |q: Point, a: Point, b: Point| {
-        let ab = [b[0] - a[0], b[1] - a[1]];
-        let l2 = ab[0] * ab[0] + ab[1] * ab[1];
-        let t = if l2 > 0.0 {
-            (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]])
-    };
     let d = (0..3)
         .map(|k| {
             point_segment(p[k], a, b)
@@ -409,4 +410,72 @@ fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
         })
         .fold(f64::INFINITY, f64::min);
     d <= band
+}
+
+/// Distance from `q` to the segment ab (rounded arithmetic).
+fn point_segment(q: Point, a: Point, b: Point) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if l2 > 0.0 {
+        (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A k×k grid of unit squares, each split into two triangles.
+    fn grid_mesh(k: u32) -> TriMesh {
+        let vertices = (0..=k)
+            .flat_map(|j| (0..=k).map(move |i| [i as f64, j as f64]))
+            .collect();
+        let id = |i: u32, j: u32| j * (k + 1) + i;
+        let triangles = (0..k)
+            .flat_map(|j| {
+                (0..k).flat_map(move |i| {
+                    [
+                        [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+                        [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+                    ]
+                })
+            })
+            .collect();
+        TriMesh {
+            vertices,
+            triangles,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn the_grid_search_finds_exactly_the_near_triangles(
+            k in 1u32..25,
+            segs in prop::collection::vec(((-2.0..27.0f64, -2.0..27.0f64), (-2.0..27.0f64, -2.0..27.0f64)), 1..4),
+            band in prop::sample::select(vec![0.0, 0.3, 1.0, 4.0]),
+        ) {
+            let mesh = grid_mesh(k);
+            let mut input = Pslg::default();
+            for ((ax, ay), (bx, by)) in segs {
+                let n = input.points.len() as u32;
+                input.points.extend([[ax, ay], [bx, by]]);
+                input.segments.push([n, n + 1]);
+            }
+            let brute: Vec<usize> = (0..mesh.triangles.len())
+                .filter(|&t| {
+                    input.segments.iter().any(|s| {
+                        let (a, b) = (input.points[s[0] as usize], input.points[s[1] as usize]);
+                        triangle_near_segment(mesh.corners(t), a, b, band)
+                    })
+                })
+                .collect();
+            prop_assert_eq!(near_segment_triangles(&mesh, &input, band), brute);
+        }
+    }
 }

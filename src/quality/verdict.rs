@@ -214,12 +214,24 @@ impl fmt::Display for Verdict {
             m.triangles,
             m.covered_area
         )?;
-        writeln!(f, "{:<30} {:>14} {:>16}  result", "check", "value", "limit")?;
+        let label = |c: &Check| match &c.note {
+            Some(n) if c.status != Status::Skipped => format!("{} [{n}]", c.what),
+            _ => c.what.clone(),
+        };
+        let width = self
+            .checks
+            .iter()
+            .map(|c| label(c).chars().count())
+            .max()
+            .unwrap_or(0)
+            .max(5);
+        writeln!(
+            f,
+            "{:<width$} {:>14} {:>16}  result",
+            "check", "value", "limit"
+        )?;
         for c in &self.checks {
-            let what = match &c.note {
-                Some(n) if c.status != Status::Skipped => format!("{} [{n}]", c.what),
-                _ => c.what.clone(),
-            };
+            let what = label(c);
             let result = match c.status {
                 Status::Ok => "ok".to_string(),
                 Status::Fail => "FAIL".to_string(),
@@ -227,7 +239,7 @@ impl fmt::Display for Verdict {
             };
             writeln!(
                 f,
-                "{:<30} {:>14} {:>16}  {result}",
+                "{:<width$} {:>14} {:>16}  {result}",
                 what,
                 number(c.value),
                 format!("{} {}", c.relation, number(Some(c.limit)))

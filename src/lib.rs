@@ -6,6 +6,7 @@
 
 pub mod error;
 pub mod geom;
+pub mod io;
 pub mod mesh;
 pub mod mesher;
 pub mod registry;

@@ -137,9 +137,8 @@ impl<'a> Lines<'a> {
     /// Field `i` of `row` as a count (a non-negative integer).
     pub fn count(&self, row: &Row, i: usize, what: &str) -> Result<usize> {
         let n = self.int(row, i, what)?;
-        usize::try_from(n).map_err(|_| {
-            self.error(row.line, format!("{what} must not be negative, found {n}"))
-        })
+        usize::try_from(n)
+            .map_err(|_| self.error(row.line, format!("{what} must not be negative, found {n}")))
     }
 
     /// Field `i` of `row` as a 0/1 flag, as Triangle's "number of boundary markers".

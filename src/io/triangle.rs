@@ -203,7 +203,12 @@ fn parse_poly_sections(lines: &mut Lines) -> Result<PolyFile> {
     }
 
     if let Some(header) = lines.next_row() {
-        lines.fields(&header, 1, 1, "<#regional attributes and/or area constraints>")?;
+        lines.fields(
+            &header,
+            1,
+            1,
+            "<#regional attributes and/or area constraints>",
+        )?;
         let count = lines.count(&header, 0, "the number of regions")?;
         let mut regions = Vec::new();
         for k in 0..count {
@@ -273,7 +278,8 @@ pub fn parse_ele(path: &Path, text: &str) -> Result<EleFile> {
         _ => 0,
     };
     let width = 4 + attribute_count;
-    let layout = format!("<triangle #> <corner> <corner> <corner> and {attribute_count} attributes");
+    let layout =
+        format!("<triangle #> <corner> <corner> <corner> and {attribute_count} attributes");
     let mut ele = EleFile {
         attribute_count,
         ..EleFile::default()
@@ -404,10 +410,14 @@ fn hexagon_directive(lines: &Lines) -> Result<Option<Hexagon>> {
     for d in &lines.directives {
         let bad = |message: &str| Error::parse(lines.path(), d.line, message.to_string());
         if d.tokens.first() != Some(&"hexagon") {
-            return Err(bad("unknown hexmesh directive; expected '# hexmesh: hexagon CX CY R'"));
+            return Err(bad(
+                "unknown hexmesh directive; expected '# hexmesh: hexagon CX CY R'",
+            ));
         }
         if d.tokens.len() != 4 {
-            return Err(bad("expected '# hexmesh: hexagon CX CY R' with three numbers"));
+            return Err(bad(
+                "expected '# hexmesh: hexagon CX CY R' with three numbers",
+            ));
         }
         let mut v = [0.0; 3];
         for (slot, token) in v.iter_mut().zip(&d.tokens[1..]) {
@@ -529,7 +539,11 @@ fn format_nodes(path: &Path, nodes: &NodeFile, text: &mut String) -> Result<()> 
     let flag = usize::from(nodes.markers.is_some());
     let _ = writeln!(text, "{n} 2 {} {flag}", nodes.attribute_count);
     if let Some(h) = nodes.hexagon {
-        finite(path, &[h.center[0], h.center[1], h.circumradius], "the hexagon")?;
+        finite(
+            path,
+            &[h.center[0], h.center[1], h.circumradius],
+            "the hexagon",
+        )?;
         let _ = writeln!(
             text,
             "# hexmesh: hexagon {:?} {:?} {:?}",
@@ -569,7 +583,11 @@ fn check_attributes(
             format!("{} attribute rows for {items} {what}", attributes.len()),
         ));
     }
-    if let Some((k, row)) = attributes.iter().enumerate().find(|(_, r)| r.len() != count) {
+    if let Some((k, row)) = attributes
+        .iter()
+        .enumerate()
+        .find(|(_, r)| r.len() != count)
+    {
         return Err(invalid(
             path,
             format!(

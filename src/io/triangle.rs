@@ -27,7 +27,8 @@ pub struct NodeFile {
     pub points: Vec<Point>,
     /// Number of attributes per point, as in the header.
     pub attribute_count: usize,
-    /// One row of `attribute_count` values per point (may be empty when `attribute_count` is 0).
+    /// One row of `attribute_count` values per point; empty when `attribute_count` is 0 (the
+    /// writer also accepts one empty row per point).
     pub attributes: Vec<Vec<f64>>,
     /// Boundary markers, present when the header's marker flag is 1.
     pub markers: Option<Vec<i64>>,
@@ -97,7 +98,7 @@ pub struct EleFile {
     /// Corners as written, numbered from the `.node` file's `first_index`.
     pub triangles: Vec<[u32; 3]>,
     pub attribute_count: usize,
-    /// One row of `attribute_count` values per triangle (may be empty when the count is 0).
+    /// One row of `attribute_count` values per triangle; empty when `attribute_count` is 0.
     pub attributes: Vec<Vec<f64>>,
     /// The number of the first triangle, 0 or 1 (Triangle uses the same base as the nodes).
     pub first_index: u32,
@@ -297,10 +298,12 @@ pub fn parse_ele(path: &Path, text: &str) -> Result<EleFile> {
             *corner = lines.vertex(&row, 1 + c, "a corner")?;
         }
         ele.triangles.push(corners);
-        let attributes = (0..attribute_count)
-            .map(|a| lines.float(&row, 4 + a, "an attribute"))
-            .collect::<Result<Vec<f64>>>()?;
-        ele.attributes.push(attributes);
+        if attribute_count > 0 {
+            let attributes = (0..attribute_count)
+                .map(|a| lines.float(&row, 4 + a, "an attribute"))
+                .collect::<Result<Vec<f64>>>()?;
+            ele.attributes.push(attributes);
+        }
         ele.lines.push(row.line);
     }
     lines.expect_end(&format!("the {count} triangles the header declares"))?;
@@ -392,10 +395,12 @@ fn parse_nodes_section(lines: &mut Lines) -> Result<NodeFile> {
         let x = lines.float(&row, 1, "the x coordinate")?;
         let y = lines.float(&row, 2, "the y coordinate")?;
         nodes.points.push([x, y]);
-        let attributes = (0..attribute_count)
-            .map(|a| lines.float(&row, 3 + a, "an attribute"))
-            .collect::<Result<Vec<f64>>>()?;
-        nodes.attributes.push(attributes);
+        if attribute_count > 0 {
+            let attributes = (0..attribute_count)
+                .map(|a| lines.float(&row, 3 + a, "an attribute"))
+                .collect::<Result<Vec<f64>>>()?;
+            nodes.attributes.push(attributes);
+        }
         if let Some(markers) = nodes.markers.as_mut() {
             markers.push(lines.int(&row, 3 + attribute_count, "the boundary marker")?);
         }

@@ -217,3 +217,24 @@ fn display_names_the_file_and_the_line() {
     assert!(text.contains("crossing_segments.poly:9:"), "{text}");
     assert!(text.contains("cross"), "{text}");
 }
+
+#[test]
+fn a_header_with_no_points_is_an_empty_input() {
+    let (file, line, problem) = input_error("no_points.node");
+    assert_eq!((file.as_str(), line), ("no_points.node", None));
+    assert_eq!(problem, InputError::Empty);
+}
+
+#[test]
+fn coordinates_too_large_to_square_are_refused_at_their_line() {
+    let (_, line, problem) = input_error("huge_coordinate.node");
+    assert_eq!(line, Some(3));
+    assert!(matches!(problem, InputError::Range { .. }), "{problem:?}");
+}
+
+#[test]
+fn a_poly_without_points_and_without_a_node_file_says_where_it_looked() {
+    let (file, _, message) = input_parse_error("orphan.poly");
+    assert_eq!(file, "orphan.poly");
+    assert!(message.contains("orphan.node"), "{message}");
+}

@@ -383,3 +383,9 @@ proptest! {
         prop_assert_eq!(back.first_index, first_index);
     }
 }
+
+#[test]
+fn windows_line_endings_are_read() {
+    let pslg = read_input(&fixture("crlf.node")).expect("crlf");
+    assert_eq!(pslg.points, vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+}

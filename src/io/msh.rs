@@ -75,3 +75,25 @@ pub(crate) fn bounding_box(mesh: &TriMesh) -> [f64; 4] {
         },
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_surface_entity_carries_the_mesh_bounding_box() {
+        let mesh = TriMesh {
+            vertices: vec![[-1.5, 2.0], [3.0, -0.25], [0.5, 7.0]],
+            triangles: vec![[0, 1, 2]],
+        };
+        assert_eq!(bounding_box(&mesh), [-1.5, -0.25, 3.0, 7.0]);
+        let dir = std::env::temp_dir().join(format!("hexmesh-io-msh-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("bbox.msh");
+        write_msh(&path, &mesh).expect("write");
+        let text = std::fs::read_to_string(&path).expect("read");
+        assert!(text.contains("$Entities\n0 0 1 0\n1 -1.5 -0.25 0 3.0 7.0 0 0 0\n$EndEntities"));
+        assert!(text.contains("$Elements\n1 1 1 1\n2 1 2 1\n1 1 2 3\n$EndElements"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -101,15 +101,25 @@ pub fn write_svg(path: &Path, mesh: &TriMesh, opts: &SvgOptions) -> Result<()> {
         let angle = smallest_angle(corners);
         smallest = smallest.min(angle);
         let bucket = (angle.round() as usize).min(BUCKETS - 1);
+        // Absolute first corner, then relative moves between the corners rounded to
+        // hundredths of a pixel: short numbers, and no rounding error adds up.
         let d = &mut buckets[bucket];
-        for (i, &c) in corners.iter().enumerate() {
-            let (x, y) = to_px(c);
-            d.push(if i == 0 { 'M' } else { 'L' });
-            push_px(d, x);
-            d.push(' ');
-            push_px(d, y);
+        let q: Vec<(i64, i64)> = corners
+            .iter()
+            .map(|&c| {
+                let (x, y) = to_px(c);
+                (hundredths(x), hundredths(y))
+            })
+            .collect();
+        d.push('M');
+        push_hundredths(d, q[0].0, false);
+        push_hundredths(d, q[0].1, true);
+        d.push('l');
+        for k in 1..3 {
+            push_hundredths(d, q[k].0 - q[k - 1].0, k > 1);
+            push_hundredths(d, q[k].1 - q[k - 1].1, true);
         }
-        d.push('Z');
+        d.push('z');
         drawn += 1;
     }
 
@@ -178,6 +188,17 @@ pub fn write_svg(path: &Path, mesh: &TriMesh, opts: &SvgOptions) -> Result<()> {
         svg.push_str("</g>\n");
     }
     svg.push_str("</g>\n");
+    if opts.zoom.is_some() {
+        // A frame shows where the inset cuts the mesh.
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#555" stroke-width="1"/>"##,
+            fmt_px(x0),
+            fmt_px(y0),
+            fmt_px(scale * dx),
+            fmt_px(scale * dy)
+        );
+    }
     legend(&mut svg, top + plot_h + 8.0, opts.width, drawn, smallest);
     svg.push_str("</svg>\n");
     write_file(path, &svg)
@@ -220,7 +241,7 @@ fn legend(svg: &mut String, y: f64, width: f64, drawn: usize, smallest: f64) {
     let figures = if drawn == 0 {
         "no triangles drawn".to_string()
     } else {
-        format!("smallest angle; {drawn} triangles drawn, smallest {smallest:.2}°")
+        format!("colour: smallest angle of each triangle; {drawn} triangles drawn, smallest angle {smallest:.2}°")
     };
     let _ = writeln!(
         svg,
@@ -320,8 +341,30 @@ fn fmt_px(v: f64) -> String {
     s
 }
 
-fn push_px(out: &mut String, v: f64) {
-    out.push_str(&fmt_px(v));
+/// A pixel coordinate in hundredths; the picture is at most 100000 px wide, so this fits.
+fn hundredths(v: f64) -> i64 {
+    (v * 100.0).round() as i64
+}
+
+/// Appends hundredths `h` as a decimal number, after a space if `separate` and the number
+/// does not start with a minus sign (which separates on its own).
+fn push_hundredths(out: &mut String, h: i64, separate: bool) {
+    if h < 0 {
+        out.push('-');
+    } else if separate {
+        out.push(' ');
+    }
+    let a = h.unsigned_abs();
+    let _ = write!(out, "{}", a / 100);
+    match a % 100 {
+        0 => {}
+        f if f % 10 == 0 => {
+            let _ = write!(out, ".{}", f / 10);
+        }
+        f => {
+            let _ = write!(out, ".{f:02}");
+        }
+    }
 }
 
 fn escape(text: &str) -> String {
@@ -348,6 +391,21 @@ mod tests {
         assert_eq!(colour(0.0), "#e62e2e");
         assert_eq!(colour(30.0), "#e6e62e");
         assert_eq!(colour(60.0), "#2ee62e");
+    }
+
+    #[test]
+    fn hundredths_are_written_short_and_signs_separate() {
+        let mut s = String::new();
+        for (h, sep) in [
+            (25970, false),
+            (-3, true),
+            (1250, true),
+            (-100, true),
+            (7, false),
+        ] {
+            push_hundredths(&mut s, h, sep);
+        }
+        assert_eq!(s, "259.7-0.03 12.5-10.07");
     }
 
     #[test]

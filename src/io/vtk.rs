@@ -33,3 +33,25 @@ pub fn write_vtk(path: &Path, mesh: &TriMesh) -> Result<()> {
     }
     write_file(path, &text)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cells_are_triangles_with_0_based_corners_and_z_is_zero() {
+        let mesh = TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, -0.0]],
+            triangles: vec![[0, 1, 2]],
+        };
+        let dir = std::env::temp_dir().join(format!("hexmesh-io-vtk-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("dir");
+        let path = dir.join("one.vtk");
+        write_vtk(&path, &mesh).expect("write");
+        let text = std::fs::read_to_string(&path).expect("read");
+        assert!(text.starts_with("# vtk DataFile Version 4.2\n"));
+        assert!(text.contains("POINTS 3 double\n0.0 0.0 0\n1.0 0.0 0\n0.0 -0.0 0\n"));
+        assert!(text.contains("CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n"));
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+}

@@ -165,3 +165,39 @@ fn a_hundred_thousand_triangles_stay_under_four_megabytes() {
     let bytes = std::fs::metadata(&path).expect("size").len();
     assert!(bytes < 4_000_000, "{bytes} bytes");
 }
+
+#[test]
+fn a_deep_zoom_keeps_every_coordinate_inside_the_picture() {
+    // A window a millionth of the triangle's size: unclipped, the corners would sit ~1e9 px
+    // away, beyond what float32 renderers can place.
+    let mesh = TriMesh {
+        vertices: vec![[-1000.0, -1000.0], [1000.0, -1000.0], [0.0, 1000.0]],
+        triangles: vec![[0, 1, 2]],
+    };
+    let path = scratch("deep.svg");
+    let opts = SvgOptions {
+        zoom: Some([0.0, 0.0, 1e-3, 1e-3]),
+        ..SvgOptions::default()
+    };
+    write_svg(&path, &mesh, &opts).expect("svg");
+    let svg = std::fs::read_to_string(&path).expect("read");
+    let d = svg
+        .lines()
+        .find(|l| l.starts_with("<path "))
+        .and_then(|l| l.split("d=\"").nth(1))
+        .expect("path data");
+    let v = numbers(d);
+    let (mut x, mut y) = (v[0], v[1]);
+    for step in v[2..].chunks(2) {
+        assert!(
+            (0.0..=800.0).contains(&x) && (0.0..=900.0).contains(&y),
+            "({x}, {y})"
+        );
+        x += step[0];
+        y += step[1];
+    }
+    assert!(
+        (0.0..=800.0).contains(&x) && (0.0..=900.0).contains(&y),
+        "({x}, {y})"
+    );
+}

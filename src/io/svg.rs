@@ -98,13 +98,24 @@ pub fn write_svg(path: &Path, mesh: &TriMesh, opts: &SvgOptions) -> Result<()> {
         if !overlaps(&corners, window) {
             continue;
         }
+        // In a zoom window, cut each triangle to the window (in mesh coordinates), so that no
+        // pixel coordinate grows beyond the picture: renderers work in float32.
+        let outline: Vec<Point> =
+            if opts.zoom.is_some() && !corners.iter().all(|&c| inside(c, window)) {
+                clip(&corners, window)
+            } else {
+                corners.to_vec()
+            };
+        if outline.len() < 3 {
+            continue;
+        }
         let angle = smallest_angle(corners);
         smallest = smallest.min(angle);
         let bucket = (angle.round() as usize).min(BUCKETS - 1);
         // Absolute first corner, then relative moves between the corners rounded to
         // hundredths of a pixel: short numbers, and no rounding error adds up.
         let d = &mut buckets[bucket];
-        let q: Vec<(i64, i64)> = corners
+        let q: Vec<(i64, i64)> = outline
             .iter()
             .map(|&c| {
                 let (x, y) = to_px(c);
@@ -115,7 +126,7 @@ pub fn write_svg(path: &Path, mesh: &TriMesh, opts: &SvgOptions) -> Result<()> {
         push_hundredths(d, q[0].0, false);
         push_hundredths(d, q[0].1, true);
         d.push('l');
-        for k in 1..3 {
+        for k in 1..q.len() {
             push_hundredths(d, q[k].0 - q[k - 1].0, k > 1);
             push_hundredths(d, q[k].1 - q[k - 1].1, true);
         }
@@ -289,6 +300,44 @@ fn inside(p: Point, w: [f64; 4]) -> bool {
     p[0] >= w[0] && p[0] <= w[2] && p[1] >= w[1] && p[1] <= w[3]
 }
 
+/// The part of a triangle inside the window: Sutherland & Hodgman's polygon clipping
+/// ("Reentrant polygon clipping", CACM 1974) against the window's four sides in turn.
+fn clip(corners: &[Point; 3], w: [f64; 4]) -> Vec<Point> {
+    let mut polygon: Vec<Point> = corners.to_vec();
+    for (axis, bound, keep_above) in [
+        (0, w[0], true),
+        (0, w[2], false),
+        (1, w[1], true),
+        (1, w[3], false),
+    ] {
+        let keep = |p: Point| {
+            if keep_above {
+                p[axis] >= bound
+            } else {
+                p[axis] <= bound
+            }
+        };
+        let mut out = Vec::with_capacity(polygon.len() + 2);
+        for i in 0..polygon.len() {
+            let (a, b) = (polygon[i], polygon[(i + 1) % polygon.len()]);
+            if keep(a) {
+                out.push(a);
+            }
+            if keep(a) != keep(b) {
+                let t = (bound - a[axis]) / (b[axis] - a[axis]);
+                let mut p = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+                p[axis] = bound;
+                out.push(p);
+            }
+        }
+        polygon = out;
+        if polygon.is_empty() {
+            break;
+        }
+    }
+    polygon
+}
+
 /// True when the triangle's bounding box meets the window.
 fn overlaps(c: &[Point; 3], w: [f64; 4]) -> bool {
     let xmin = c[0][0].min(c[1][0]).min(c[2][0]);
@@ -406,6 +455,17 @@ mod tests {
             push_hundredths(&mut s, h, sep);
         }
         assert_eq!(s, "259.7-0.03 12.5-10.07");
+    }
+
+    #[test]
+    fn clipping_keeps_the_part_inside_the_window() {
+        let triangle = [[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]];
+        let part = clip(&triangle, [1.0, -1.0, 2.0, 1.0]);
+        // The unit-wide strip 1 <= x <= 2 cut from the triangle's bottom: a rectangle.
+        let mut sorted = part.clone();
+        sorted.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+        assert_eq!(sorted, vec![[1.0, 0.0], [1.0, 1.0], [2.0, 0.0], [2.0, 1.0]]);
+        assert!(clip(&triangle, [5.0, 5.0, 6.0, 6.0]).is_empty());
     }
 
     #[test]

@@ -238,3 +238,61 @@ fn a_poly_without_points_and_without_a_node_file_says_where_it_looked() {
     assert_eq!(file, "orphan.poly");
     assert!(message.contains("orphan.node"), "{message}");
 }
+
+mod never_panics {
+    use super::*;
+    use hexmesh::io::{parse_ele, parse_node, parse_poly};
+    use proptest::prelude::*;
+
+    /// Text made of the pieces Triangle files are made of, in any order: the parsers must
+    /// answer every such file with a value or an error, never a panic.
+    fn triangle_like_text() -> impl Strategy<Value = String> {
+        let token = prop_oneof![
+            Just("0".to_string()),
+            Just("1".to_string()),
+            Just("2".to_string()),
+            Just("3".to_string()),
+            Just("6".to_string()),
+            Just("-1".to_string()),
+            Just("4294967296".to_string()),
+            Just("99999999999999999999".to_string()),
+            Just("0.5".to_string()),
+            Just("-0.0".to_string()),
+            Just("nan".to_string()),
+            Just("inf".to_string()),
+            Just("1e400".to_string()),
+            Just("x".to_string()),
+            Just("#".to_string()),
+            Just("# hexmesh: hexagon 0 0 1".to_string()),
+            Just("\n".to_string()),
+            Just("\r\n".to_string()),
+            Just("\t".to_string()),
+        ];
+        prop::collection::vec(token, 0..60).prop_map(|t| t.join(" "))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        #[test]
+        fn parsers_return_errors_instead_of_panicking(text in triangle_like_text()) {
+            let _ = parse_node(Path::new("f.node"), &text);
+            let _ = parse_poly(Path::new("f.poly"), &text);
+            let _ = parse_ele(Path::new("f.ele"), &text);
+        }
+
+        #[test]
+        fn parse_errors_carry_a_line_inside_the_file(text in triangle_like_text()) {
+            let lines = text.lines().count().max(1);
+            for result in [
+                parse_node(Path::new("f.node"), &text).err(),
+                parse_poly(Path::new("f.poly"), &text).err(),
+                parse_ele(Path::new("f.ele"), &text).err(),
+            ] {
+                if let Some(Error::Parse { line, .. }) = result {
+                    prop_assert!(line >= 1 && line <= lines, "line {} of {}", line, lines);
+                }
+            }
+        }
+    }
+}

@@ -1,8 +1,8 @@
 //! The committed datasets are the same bytes on every machine: SHA-256 of each small
 //! dataset's f64 bits, compared with digests committed here (DESIGN.md "Datasets").
 //! A changed digest means a changed dataset: regenerate `datasets/` and say why in the commit.
-//! The point-set digests were also reproduced by an independent Python implementation of
-//! pcg64 written from the PCG paper (state 128-bit LCG, XSL-RR output), not from rand.
+//! All six digests were also reproduced by an independent Python implementation (pcg64 from
+//! its specification: 128-bit LCG, XSL-RR output; the letters with the same Taylor series).
 
 use hexmesh::datasets::{self, SMALL};
 use hexmesh::Pslg;

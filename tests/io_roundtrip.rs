@@ -389,3 +389,20 @@ fn windows_line_endings_are_read() {
     let pslg = read_input(&fixture("crlf.node")).expect("crlf");
     assert_eq!(pslg.points, vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
 }
+
+#[test]
+fn every_small_dataset_survives_write_pslg_and_read_input_bit_exactly() {
+    let dir = scratch("datasets");
+    for &name in hexmesh::datasets::SMALL {
+        let pslg = hexmesh::datasets::by_name(name).expect(name);
+        let file = hexmesh::datasets::file_name(name).expect(name);
+        let path = dir.join(&file);
+        write_pslg(&path, &pslg).expect(name);
+        let back = read_input(&path).expect(name);
+        assert_eq!(point_bits(&back.points), point_bits(&pslg.points), "{name}");
+        assert_eq!(back.segments, pslg.segments, "{name}");
+        assert_eq!(point_bits(&back.holes), point_bits(&pslg.holes), "{name}");
+        // close-pair's hexagon is given, not fitted: it must come back.
+        assert_eq!(back.hexagon, pslg.hexagon, "{name}");
+    }
+}

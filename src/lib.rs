@@ -4,8 +4,10 @@
 //!
 //! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
 
+pub mod datasets;
 pub mod error;
 pub mod geom;
+pub mod io;
 pub mod mesh;
 pub mod mesher;
 pub mod quality;

@@ -254,3 +254,27 @@ fn every_fixture_is_readable_and_checked_without_panicking() {
         }
     }
 }
+
+#[test]
+fn the_io_reader_reads_every_fixture_as_the_test_reader_does() {
+    // `hexmesh verify` reads these files with the io module: it must see the same meshes.
+    let dir = fixture("");
+    let mut prefixes: Vec<String> = std::fs::read_dir(&dir)
+        .expect("fixture dir")
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            e.file_name()
+                .to_str()?
+                .strip_suffix(".ele")
+                .map(str::to_string)
+        })
+        .collect();
+    prefixes.sort();
+    for p in prefixes {
+        let by_io = hexmesh::io::read_mesh(&fixture(&p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+        assert_eq!(by_io, read_mesh(&p), "{p}");
+    }
+    let input = hexmesh::io::read_input(&fixture("missing_input_point_input.node"))
+        .expect("the input of missing_input_point");
+    assert_eq!(input.points, read_node("missing_input_point_input.node"));
+}

@@ -4,7 +4,6 @@
 //! measured smallest angle is below the request by more than 1e-6° (DESIGN.md "Checks").
 //! Every step runs isolated (`isolate::run_isolated`), since a reference may hang or exit.
 
-use std::collections::HashMap;
 use std::fmt;
 use std::path::Path;
 use std::time::Duration;
@@ -12,10 +11,10 @@ use std::time::Duration;
 use serde::Serialize;
 
 use crate::error::{Error, Result};
-use crate::geom::orient2d;
 use crate::isolate::run_isolated;
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::Params;
+use crate::quality::{metrics, validate, ValidateOptions};
 
 /// The paper's first requested angle, in degrees.
 pub const DEFAULT_START: f64 = 20.0;
@@ -91,6 +90,11 @@ pub fn max_angle(
     }
     input.validate_input()?;
     crate::registry::mesher(mesher)?;
+    // Segment conformity is left out: `quality::validate` asks for exactly collinear chains,
+    // and the Steiner points references put on sloped segments are rounded off them (by
+    // ~1e-17 on the IMR letters), so every PSLG would fail at the first step. The angle
+    // protocol is about angles; `hexmesh verify` reports conformity.
+    let conforming = false;
     let mut best: Option<(f64, f64, usize, f64)> = None;
     let mut attempts = 0;
     for k in 0u32.. {
@@ -109,7 +113,7 @@ pub fn max_angle(
                     .stop_reason
                     .unwrap_or_else(|| "stopped early".to_string()),
             ),
-            Ok(iso) => match check_mesh(input, &iso.run.mesh) {
+            Ok(iso) => match check_mesh(input, &iso.run.mesh, conforming) {
                 Err(problem) => Some(format!("invalid mesh: {problem}")),
                 Ok(measured) if measured < angle - ANGLE_TOLERANCE => Some(format!(
                     "measured minimum angle {measured:.6}° is below the request"
@@ -151,64 +155,28 @@ fn finish(
     }
 }
 
-/// The smallest angle of `mesh` in degrees, after the structural checks the protocol needs:
-/// a non-empty mesh, indices in range, every triangle counter-clockwise with positive area
-/// (exact sign), every edge used at most once per direction and by at most two triangles,
-/// and every input point a vertex, bit-exactly. (The `quality` module holds the full checks.)
-pub fn check_mesh(input: &Pslg, mesh: &TriMesh) -> std::result::Result<f64, String> {
+/// The smallest angle of `mesh` in degrees (`quality::metrics`), once `quality::validate`
+/// finds it valid: every input point a vertex bit-exactly, and with `conforming` every input
+/// segment a chain of mesh edges. The first violation is the error.
+pub fn check_mesh(
+    input: &Pslg,
+    mesh: &TriMesh,
+    conforming: bool,
+) -> std::result::Result<f64, String> {
     if mesh.triangles.is_empty() {
         return Err("no triangles".into());
     }
-    let n = mesh.vertices.len();
-    let mut edges: HashMap<(u32, u32), u8> = HashMap::with_capacity(3 * mesh.triangles.len());
-    let mut min_angle = f64::INFINITY;
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        if tri.iter().any(|&v| v as usize >= n) {
-            return Err(format!("triangle {t} names a vertex out of range"));
-        }
-        let [a, b, c] = mesh.corners(t);
-        if orient2d(a, b, c) <= 0.0 {
-            return Err(format!("triangle {t} is not counter-clockwise"));
-        }
-        for k in 0..3 {
-            let (u, v) = (tri[k], tri[(k + 1) % 3]);
-            let count = edges.entry((u, v)).or_insert(0);
-            *count += 1;
-            if *count > 1 {
-                return Err(format!("edge {u}-{v} is used twice in one direction"));
-            }
-        }
-        min_angle = min_angle.min(smallest_angle(a, b, c));
-    }
-    let mut bits: Vec<(u64, u64)> = mesh
-        .vertices
-        .iter()
-        .map(|p| (p[0].to_bits(), p[1].to_bits()))
-        .collect();
-    bits.sort_unstable();
-    for (i, p) in input.points.iter().enumerate() {
-        if bits
-            .binary_search(&(p[0].to_bits(), p[1].to_bits()))
-            .is_err()
-        {
-            return Err(format!("input point {i} is not a vertex"));
-        }
-    }
-    Ok(min_angle)
-}
-
-/// The smallest interior angle of triangle abc, in degrees; atan2 of cross and dot keeps it
-/// accurate for angles near 0° and 180° alike.
-fn smallest_angle(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
-    let angle = |p: [f64; 2], q: [f64; 2], r: [f64; 2]| {
-        let (ux, uy) = (q[0] - p[0], q[1] - p[1]);
-        let (vx, vy) = (r[0] - p[0], r[1] - p[1]);
-        (ux * vy - uy * vx)
-            .abs()
-            .atan2(ux * vx + uy * vy)
-            .to_degrees()
+    let options = ValidateOptions {
+        single_component: false,
+        conforming: conforming && input.has_segments(),
     };
-    angle(a, b, c).min(angle(b, c, a)).min(angle(c, a, b))
+    if let Some(v) = validate(mesh, Some(input), &options).first() {
+        return Err(v.to_string());
+    }
+    metrics(mesh, Some(input))
+        .min_angle
+        .map(|w| w.value)
+        .ok_or_else(|| "no angle measured".to_string())
 }
 
 #[cfg(test)]
@@ -217,7 +185,12 @@ mod tests {
 
     #[test]
     fn smallest_angle_of_a_right_isoceles_triangle_is_45() {
-        let m = smallest_angle([0.0, 0.0], [1.0, 0.0], [0.0, 1.0]);
+        let input = Pslg::from_points(vec![[0.0, 0.0]]);
+        let mesh = TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+            triangles: vec![[0, 1, 2]],
+        };
+        let m = check_mesh(&input, &mesh, true).unwrap();
         assert!((m - 45.0).abs() < 1e-12);
     }
 
@@ -228,7 +201,8 @@ mod tests {
             vertices: vec![[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]],
             triangles: vec![[0, 1, 2]],
         };
-        assert!(check_mesh(&input, &mesh).unwrap_err().contains("counter"));
+        let err = check_mesh(&input, &mesh, false).unwrap_err();
+        assert!(err.contains("clockwise"), "{err}");
     }
 
     #[test]
@@ -238,9 +212,8 @@ mod tests {
             vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
             triangles: vec![[0, 1, 2]],
         };
-        assert!(check_mesh(&input, &mesh)
-            .unwrap_err()
-            .contains("input point 0"));
+        let err = check_mesh(&input, &mesh, false).unwrap_err();
+        assert!(err.contains("input point 0"), "{err}");
     }
 
     #[test]

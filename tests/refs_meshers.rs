@@ -1,9 +1,11 @@
 //! The spade and Triangle reference meshers at 30° on a point set (meshed inside its fitted
 //! bounding hexagon) and on a square with a square hole: input points come back first and
 //! bit-exact, triangles are counter-clockwise, the smallest angle meets the request, and
-//! nothing is left inside the hole.
+//! nothing is left inside the hole. `quality::validate` must find nothing wrong, segments
+//! conforming included.
 
 use hexmesh::geom::orient2d;
+use hexmesh::quality::{metrics, validate, ValidateOptions};
 use hexmesh::reference::triangle::triangle_switches;
 use hexmesh::{mesher, MeshRun, Params, Pslg};
 
@@ -48,25 +50,6 @@ fn square_with_hole() -> Pslg {
     }
 }
 
-fn smallest_angle(run: &MeshRun) -> f64 {
-    (0..run.mesh.triangles.len())
-        .map(|t| {
-            let c = run.mesh.corners(t);
-            (0..3)
-                .map(|k| {
-                    let (p, q, r) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
-                    let (ux, uy) = (q[0] - p[0], q[1] - p[1]);
-                    let (vx, vy) = (r[0] - p[0], r[1] - p[1]);
-                    (ux * vy - uy * vx)
-                        .abs()
-                        .atan2(ux * vx + uy * vy)
-                        .to_degrees()
-                })
-                .fold(f64::INFINITY, f64::min)
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
 fn assert_good_mesh(name: &str, input: &Pslg, run: &MeshRun, min_angle: f64) {
     assert!(run.complete, "{name}: {:?}", run.stop_reason);
     assert!(!run.mesh.triangles.is_empty(), "{name}: no triangles");
@@ -82,7 +65,13 @@ fn assert_good_mesh(name: &str, input: &Pslg, run: &MeshRun, min_angle: f64) {
         let [a, b, c] = run.mesh.corners(t);
         assert!(orient2d(a, b, c) > 0.0, "{name}: triangle {t} is not CCW");
     }
-    let got = smallest_angle(run);
+    let options = ValidateOptions {
+        single_component: !input.has_segments(),
+        conforming: true,
+    };
+    let violations = validate(&run.mesh, Some(input), &options);
+    assert!(violations.is_empty(), "{name}: {}", violations[0]);
+    let got = metrics(&run.mesh, Some(input)).min_angle.unwrap().value;
     assert!(
         got >= min_angle - 1e-6,
         "{name}: smallest angle {got}° < {min_angle}°"

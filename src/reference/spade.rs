@@ -100,9 +100,12 @@ impl Mesher for SpadeMesher {
             Some(a) => format!("max_allowed_area={a}"),
             None => "max_allowed_area=none".to_string(),
         };
-        let budget = match (params.budget.max_vertices, e.max_additional_vertices) {
-            (Some(v), _) => format!("max_additional_vertices={v} - initial vertices"),
-            (None, Some(n)) => format!("max_additional_vertices={n}"),
+        let budget = match (params.budget.max_vertices, params.budget.max_steps) {
+            (Some(v), Some(s)) => {
+                format!("max_additional_vertices=min({v} - initial vertices, {s})")
+            }
+            (Some(v), None) => format!("max_additional_vertices={v} - initial vertices"),
+            (None, Some(s)) => format!("max_additional_vertices={s}"),
             (None, None) => format!(
                 "max_additional_vertices=max(10*initial vertices, {MIN_DEFAULT_EXTRA_VERTICES})"
             ),

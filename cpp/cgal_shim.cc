@@ -5,7 +5,10 @@
 //
 // Compiled without NDEBUG/CGAL_NDEBUG on purpose: CGAL's preconditions then throw
 // CGAL::Precondition_exception on input they cannot handle instead of running into undefined
-// behaviour, and the bridge turns the exception into a Rust error.
+// behaviour, and the bridge turns the exception into a Rust error. Measured cost (opt-level 2,
+// 100,000 random points in their bounding hexagon, 30 degrees, 866,156 triangles, plus the
+// conforming triangulation of the same; user time over three runs on a busy 2-core machine):
+// 3.4-4.1 s with the preconditions, 3.8-3.9 s with -DCGAL_NDEBUG, so no cost above the noise.
 
 #include "hexmesh/cpp/cgal_shim.h"
 #include "hexmesh/src/reference/cgal/mod.rs.h"

@@ -185,6 +185,21 @@ fn cgal_meshes_a_point_set_in_its_reference_domain_at_30_degrees() {
 }
 
 #[test]
+fn a_bare_point_set_is_meshed_in_its_bounding_hexagon() {
+    let domain = point_set_domain();
+    let bare = Pslg::from_points(domain.points[..40].to_vec());
+    let hexagon = bare.bounding_hexagon().area();
+    for mesher in [&Cgal as &dyn Mesher, &CgalConforming] {
+        let params = Params::default().with_min_angle(30.0);
+        let run = mesher.mesh(&bare, &params).unwrap();
+        assert!(run.complete, "{}", mesher.name());
+        // The hexagon's corners follow the input points, as in the reference domain.
+        assert_valid(&domain, &run, hexagon);
+        assert_eq!(run.mesh, mesher.mesh(&domain, &params).unwrap().mesh);
+    }
+}
+
+#[test]
 fn cgal_max_area_bounds_every_triangle() {
     let input = square_with_hole();
     let run = Cgal
@@ -224,6 +239,38 @@ fn cgal_conforming_on_a_point_set_domain_is_delaunay() {
         .expect("cgal-conforming meshes the point set");
     assert!(run.complete);
     assert_valid(&input, &run, area);
+    assert_segments_are_chains(&input, &run.mesh);
+    assert_eq!(delaunay_violations(&run.mesh), 0);
+}
+
+/// A 10 × 2 rectangle cut in two by the chord y = 1, with points hugging the chord from above:
+/// the chord is not a Delaunay edge, so the conformer must split it. Both halves touch the
+/// outside, so both are in the domain (area 20).
+fn split_rectangle() -> Pslg {
+    let mut points = vec![
+        [0.0, 0.0],
+        [10.0, 0.0],
+        [10.0, 1.0],
+        [10.0, 2.0],
+        [0.0, 2.0],
+        [0.0, 1.0],
+    ];
+    points.extend((0..10).map(|i| [0.5 + i as f64, 1.05]));
+    Pslg {
+        points,
+        segments: vec![[0, 1], [1, 2], [2, 3], [3, 4], [4, 5], [5, 0], [5, 2]],
+        ..Pslg::default()
+    }
+}
+
+#[test]
+fn cgal_conforming_splits_segments_until_delaunay() {
+    let input = split_rectangle();
+    let run = CgalConforming.mesh(&input, &Params::default()).unwrap();
+    assert!(run.complete);
+    assert!(run.steps >= 10, "only {} splits", run.steps);
+    assert_eq!(run.mesh.vertices.len() as u64, 16 + run.steps);
+    assert_valid(&input, &run, 20.0);
     assert_segments_are_chains(&input, &run.mesh);
     assert_eq!(delaunay_violations(&run.mesh), 0);
 }
@@ -358,10 +405,16 @@ fn step_and_vertex_budgets_stop_refinement_where_they_say() {
     assert_eq!(run.steps, 100 - 8);
     assert_valid(&input, &run, 0.75);
 
+    let few = Budget {
+        max_steps: Some(3),
+        ..Budget::default()
+    };
     let run = CgalConforming
-        .mesh(&point_set_domain(), &Params::default().with_budget(steps))
+        .mesh(&split_rectangle(), &Params::default().with_budget(few))
         .unwrap();
-    assert!(run.complete || run.steps == 25);
+    assert!(!run.complete);
+    assert_eq!(run.steps, 3);
+    assert_valid(&split_rectangle(), &run, 20.0);
 }
 
 #[test]

@@ -8,6 +8,7 @@
 //! Every bridged function returns `Result`, so a C++ exception (CGAL's precondition failures
 //! included: the shim is compiled with them on) becomes `Error::Mesher`.
 
+use std::borrow::Cow;
 use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
@@ -101,8 +102,22 @@ pub fn limits(budget: &Budget) -> ffi::Limits {
     }
 }
 
-/// The input as the bridge's flat arrays: coordinates, segment index pairs, hole coordinates.
+/// The domain CGAL meshes: a PSLG as given; a point set in its bounding hexagon
+/// (`Pslg::reference_domain`, corners appended after the input points). Without enclosing
+/// constraints CGAL's refinement would insert circumcentres outside the convex hull and need
+/// not stop.
+fn domain(input: &Pslg) -> Cow<'_, Pslg> {
+    if input.has_segments() {
+        Cow::Borrowed(input)
+    } else {
+        Cow::Owned(input.reference_domain())
+    }
+}
+
+/// The domain of `input` as the bridge's flat arrays: coordinates, segment index pairs, hole
+/// coordinates.
 fn flatten(input: &Pslg) -> (Vec<f64>, Vec<u32>, Vec<f64>) {
+    let input = domain(input);
     let points = input.points.iter().flatten().copied().collect();
     let segments = input.segments.iter().flatten().copied().collect();
     let holes = input.holes.iter().flatten().copied().collect();
@@ -188,7 +203,10 @@ impl Mesher for Cgal {
             ),
             None => "S = 0 (no size bound)".to_string(),
         };
-        format!("Delaunay_mesh_size_criteria_2({angle}; {size}); CGAL preconditions on")
+        format!(
+            "Delaunay_mesh_size_criteria_2({angle}; {size}); point sets meshed in their \
+             bounding hexagon; CGAL preconditions on"
+        )
     }
 
     fn supports_segments(&self) -> bool {
@@ -221,7 +239,8 @@ impl Mesher for CgalConforming {
     fn settings(&self, params: &Params) -> String {
         let mut s = String::from(
             "make_conforming_Delaunay_2 (no angle or size refinement); domain: odd nesting \
-             levels of the segment loops minus hole regions; CGAL preconditions on",
+             levels of the segment loops minus hole regions, point sets in their bounding \
+             hexagon; CGAL preconditions on",
         );
         if params.min_angle.is_some() || params.max_area.is_some() {
             s.push_str("; min angle and max area ignored");

@@ -130,22 +130,28 @@ class Budget {
 public:
   Budget(const Limits &limits, Clock::time_point start) : limits_(limits), start_(start) {}
 
-  // Empty while refinement may go on; otherwise why it must stop.
-  std::string exhausted(std::uint64_t steps, std::size_t vertices) const {
-    std::ostringstream why;
-    if (steps >= limits_.max_steps) {
-      why << "step budget of " << limits_.max_steps << " refinement steps reached";
-    } else if (vertices >= limits_.max_vertices) {
-      why << "vertex budget of " << limits_.max_vertices << " vertices reached after " << steps
+  // False while refinement may go on; otherwise true, with the reason in `why`. Called once
+  // per step, so the message is formatted only when a limit is hit.
+  bool exhausted(std::uint64_t steps, std::size_t vertices, std::string &why) const {
+    const bool by_steps = steps >= limits_.max_steps;
+    const bool by_vertices = !by_steps && vertices >= limits_.max_vertices;
+    const bool by_time = !by_steps && !by_vertices &&
+                         limits_.max_seconds < std::numeric_limits<double>::infinity() &&
+                         std::chrono::duration<double>(Clock::now() - start_).count() >=
+                             limits_.max_seconds;
+    if (!by_steps && !by_vertices && !by_time) return false;
+    std::ostringstream msg;
+    if (by_steps) {
+      msg << "step budget of " << limits_.max_steps << " refinement steps reached";
+    } else if (by_vertices) {
+      msg << "vertex budget of " << limits_.max_vertices << " vertices reached after " << steps
           << " steps";
     } else {
-      const double seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-      if (seconds >= limits_.max_seconds) {
-        why << "time budget of " << limits_.max_seconds << " s ran out after " << steps
-            << " steps";
-      }
+      msg << "time budget of " << limits_.max_seconds << " s ran out after " << steps
+          << " steps";
     }
-    return why.str();
+    why = msg.str();
+    return true;
   }
 
 private:
@@ -272,8 +278,7 @@ CgalMesh mesh_delaunay(rust::Slice<const double> points, rust::Slice<const std::
   std::uint64_t steps = 0;
   std::string stop;
   while (!mesher.is_refinement_done()) {
-    stop = budget.exhausted(steps, cdt.number_of_vertices());
-    if (!stop.empty()) break;
+    if (budget.exhausted(steps, cdt.number_of_vertices(), stop)) break;
     // Each successful call inserts one Steiner point (an edge midpoint or a circumcentre).
     if (!mesher.step_by_step_refine_mesh()) break;
     ++steps;
@@ -301,8 +306,7 @@ CgalMesh mesh_conforming(rust::Slice<const double> points,
   std::uint64_t steps = 0;
   std::string stop;
   while (!conformer.is_conforming_done()) {
-    stop = budget.exhausted(steps, cdt.number_of_vertices());
-    if (!stop.empty()) break;
+    if (budget.exhausted(steps, cdt.number_of_vertices(), stop)) break;
     if (!conformer.step_by_step_conforming_Delaunay()) break;
     ++steps;
   }

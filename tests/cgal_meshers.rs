@@ -200,22 +200,23 @@ fn a_bare_point_set_is_meshed_in_its_bounding_hexagon() {
 }
 
 #[test]
-fn cgal_max_area_bounds_every_triangle() {
+fn cgal_max_area_bounds_every_triangle_at_30_degrees() {
     let input = square_with_hole();
-    let run = Cgal
-        .mesh(&input, &Params::default().with_max_area(0.002))
-        .expect("cgal meshes the square");
+    let params = Params::default().with_min_angle(30.0).with_max_area(0.002);
+    let run = Cgal.mesh(&input, &params).expect("cgal meshes the square");
     assert!(run.complete);
     assert_valid(&input, &run, 0.75);
-    let biggest = (0..run.mesh.triangles.len())
-        .map(|t| triangle_area(&run.mesh, t))
+    assert_segments_are_chains(&input, &run.mesh);
+    let m = &run.mesh;
+    let biggest = (0..m.triangles.len())
+        .map(|t| triangle_area(m, t))
         .fold(0.0, f64::max);
     assert!(biggest <= 0.002, "largest triangle {biggest}");
-    assert!(
-        run.mesh.triangles.len() >= 375,
-        "{}",
-        run.mesh.triangles.len()
-    );
+    assert!(m.triangles.len() >= 375, "{}", m.triangles.len());
+    let worst = (0..m.triangles.len())
+        .map(|t| min_angle_deg(m, t))
+        .fold(f64::INFINITY, f64::min);
+    assert!(worst >= 30.0 - 1e-6, "smallest angle {worst}°");
 }
 
 #[test]

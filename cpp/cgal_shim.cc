@@ -1,5 +1,5 @@
 // CGAL 5.5's 2D meshers behind plain data (CGAL manual, "2D Conforming Triangulations and
-// Meshes": Delaunay_mesher_2 and Triangulation_conformer_2, step-by-step API of Sec. 2.3/3.3).
+// Meshes" by L. Rineau: Delaunay_mesher_2 and Triangulation_conformer_2 and their step API).
 // The refinement loops are driven one inserted point at a time so that a step, vertex and time
 // budget can stop them: CGAL guarantees termination only for b <= 0.125 (20.7 degrees).
 //

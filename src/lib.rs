@@ -12,6 +12,7 @@ pub mod io;
 pub mod mesh;
 pub mod mesher;
 pub mod quality;
+pub mod reference;
 pub mod registry;
 
 pub use error::{Error, InputError, Result};

@@ -4,6 +4,7 @@
 //!
 //! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
 
+pub mod cli;
 pub mod datasets;
 pub mod error;
 pub mod geom;

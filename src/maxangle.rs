@@ -89,12 +89,8 @@ pub fn max_angle(
         )));
     }
     input.validate_input()?;
-    crate::registry::mesher(mesher)?;
-    // Segment conformity is left out: `quality::validate` asks for exactly collinear chains,
-    // and the Steiner points references put on sloped segments are rounded off them (by
-    // ~1e-17 on the IMR letters), so every PSLG would fail at the first step. The angle
-    // protocol is about angles; `hexmesh verify` reports conformity.
-    let conforming = false;
+    // Only meshers that promise to keep segments are held to it (DESIGN.md "Checks").
+    let conforming = crate::registry::mesher(mesher)?.supports_segments();
     let mut best: Option<(f64, f64, usize, f64)> = None;
     let mut attempts = 0;
     for k in 0u32.. {

@@ -298,3 +298,31 @@ fn nan_and_infinite_coordinates_are_reported_without_panicking() {
         let _ = out.to_string();
     }
 }
+
+/// A segment split at its constructed midpoint, which f64 rounds off the line by one ulp,
+/// still conforms; a split point visibly off the line does not.
+#[test]
+fn a_rounded_split_point_conforms_but_a_kink_does_not() {
+    let (a, b) = ([0.1, 0.2], [0.7, 0.9]);
+    let m = [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0];
+    assert_ne!(
+        hexmesh::geom::orient2d(a, b, m),
+        0.0,
+        "the midpoint must be off the line"
+    );
+    let apex = [0.0, 1.0];
+    let input = Pslg {
+        points: vec![a, b, apex],
+        segments: vec![[0, 1]],
+        ..Pslg::default()
+    };
+    let split = |mid: [f64; 2]| mesh(&[a, b, apex, mid], &[[0, 3, 2], [3, 1, 2]]);
+    assert_eq!(validate(&split(m), Some(&input), &ONE_DISC), vec![]);
+    let kinked = [m[0], m[1] - 1e-9];
+    let v = validate(&split(kinked), Some(&input), &ONE_DISC);
+    assert!(
+        v.iter()
+            .any(|v| matches!(v, Violation::SegmentNotConforming { segment: 0, .. })),
+        "{v:#?}"
+    );
+}

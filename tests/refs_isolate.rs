@@ -213,3 +213,13 @@ fn max_angle_refuses_a_bad_step_an_unknown_mesher_and_a_missing_binary() {
         Err(Error::Io { .. })
     ));
 }
+
+#[test]
+fn max_angle_on_a_pslg_with_sloped_segments_is_plausible() {
+    // The IMR letters: Steiner points on sloped segments are rounded off the segment's line,
+    // which conformity must tolerate, or every step would fail.
+    let input = hexmesh::datasets::by_name("imr").unwrap();
+    let r = max_angle(exe(), "triangle", &input, 1.0, Duration::from_secs(2), 30.0).unwrap();
+    let angle = r.angle.unwrap_or(0.0);
+    assert!((30.0..45.0).contains(&angle), "{r}");
+}

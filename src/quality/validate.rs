@@ -12,7 +12,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::geom::{orient2d, Point};
+use crate::geom::{dist, orient2d, Point};
 use crate::mesh::{Pslg, TriMesh};
 
 /// What `validate` checks beyond the invariants every mesh must meet.
@@ -110,7 +110,7 @@ pub enum Violation {
     },
     /// An input point is not a mesh vertex (bit-exact comparison).
     MissingInputPoint { input: usize, point: Point },
-    /// An input segment is not a chain of collinear mesh edges; `stuck_at` is the mesh vertex
+    /// An input segment is not a chain of mesh edges along it (within rounding, see `check_input`); `stuck_at` is the mesh vertex
     /// where the chain from the first endpoint breaks off (none when an endpoint is missing).
     SegmentNotConforming {
         segment: usize,
@@ -984,6 +984,19 @@ fn input_conformity(
             (1, (pb[1] - pa[1]).signum())
         };
         let progress = |v: u32| sign * mesh.vertices[v as usize][axis];
+        // Meshers split segments at constructed points (midpoints, crossings) that f64 can only
+        // round onto the segment's line; a vertex counts as on the segment when it is within
+        // 2^-40 of the segment's coordinate scale of the line: rounding, never a visible kink.
+        // Input endpoints still have to match bit-exactly (above).
+        let length = dist(pa, pb);
+        let scale = [pa[0], pa[1], pb[0], pb[1]]
+            .iter()
+            .fold(length, |m, c| m.max(c.abs()));
+        let tolerance = scale * (-40f64).exp2();
+        let on_line = |pw: Point| {
+            let o = orient2d(pa, pb, pw);
+            o == 0.0 || o.abs() / length <= tolerance
+        };
         let end = progress(vb);
         let mut u = va;
         while u != vb {
@@ -991,7 +1004,7 @@ fn input_conformity(
             let step = neighbours(u)
                 .filter(|&w| {
                     let pw = mesh.vertices[w as usize];
-                    orient2d(pa, pb, pw) == 0.0 && progress(w) > here && progress(w) <= end
+                    on_line(pw) && progress(w) > here && progress(w) <= end
                 })
                 .min_by(|&x, &y| progress(x).total_cmp(&progress(y)).then(x.cmp(&y)));
             match step {

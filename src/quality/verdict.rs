@@ -72,7 +72,10 @@ impl Verdict {
 pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) -> Verdict {
     let has_segments = input.is_some_and(|i| i.has_segments());
     let options = ValidateOptions {
-        single_component: bounds.is_some_and(|b| b.single_component) && !has_segments,
+        // The mesh of a point set is one disc, whatever the bounds: a second boundary loop is a
+        // hole the mesher had no business making.
+        single_component: !has_segments
+            && (input.is_some() || bounds.is_some_and(|b| b.single_component)),
         conforming: bounds.is_some_and(|b| b.conforming),
     };
     let violations = validate(mesh, input, &options);

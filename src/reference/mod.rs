@@ -3,9 +3,12 @@
 //! the input points for a point set (`Pslg::reference_domain`), the segments' region minus the
 //! seeded holes for a PSLG — and is asked for the minimum angle of the run.
 //!
+//! - `cgal`, `cgal-conforming`: CGAL's 2D Delaunay mesher through `cxx` (feature `cgal`).
 //! - `spade`: spade's constrained Delaunay refinement (Ruppert/Chew style).
 //! - `triangle`: Shewchuk's Triangle through the `tritet` crate.
 
+#[cfg(feature = "cgal")]
+pub mod cgal;
 pub mod spade;
 pub mod triangle;
 

@@ -4,11 +4,18 @@
 //!
 //! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
 
+pub mod cli;
+pub mod datasets;
 pub mod error;
 pub mod geom;
 pub mod hex;
+pub mod io;
+pub mod isolate;
+pub mod maxangle;
 pub mod mesh;
 pub mod mesher;
+pub mod quality;
+pub mod reference;
 pub mod registry;
 
 pub use error::{Error, InputError, Result};

@@ -6,7 +6,15 @@ use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![Box::new(crate::hex::HexSimple)]
+    vec![
+        Box::new(crate::hex::HexSimple),
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::Cgal),
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::CgalConforming),
+        Box::new(crate::reference::TriangleMesher),
+        Box::new(crate::reference::SpadeMesher),
+    ]
 }
 
 /// The names of the registered meshers, in report order.

@@ -23,6 +23,9 @@ fn assert_extended_bounds(input: &Pslg) -> TriMesh {
     check_mesh(&mesh, &input.points, Some((min_angle_bound(), 90.0)))
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(delaunay_violations(&mesh).is_empty());
+    let bounds = hexmesh::quality::Bounds::parse("hex").unwrap();
+    let v = hexmesh::quality::verdict(&mesh, Some(input), Some(&bounds));
+    assert!(v.passed(), "{v}");
     let worst = (0..mesh.triangles.len())
         .map(|t| radius_ratio(mesh.corners(t)))
         .fold(0.0, f64::max);

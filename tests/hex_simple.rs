@@ -19,6 +19,9 @@ fn assert_simple_bounds(input: &Pslg) -> hexmesh::MeshRun {
     assert!(run.complete);
     let stats =
         check_mesh(&run.mesh, &input.points, Some((30.0, 120.0))).unwrap_or_else(|e| panic!("{e}"));
+    let bounds = hexmesh::quality::Bounds::parse("hex-simple").unwrap();
+    let v = hexmesh::quality::verdict(&run.mesh, Some(input), Some(&bounds));
+    assert!(v.passed(), "{v}");
     assert!(stats.min_angle >= 30.0 - 1e-6 && stats.max_angle <= 120.0 + 1e-6);
     run
 }

@@ -39,6 +39,9 @@ fn check(input: Pslg, refusable: f64) -> Result<(), TestCaseError> {
             prop_assert!(run.complete);
             check_mesh(&run.mesh, &input.points, Some((30.0, 120.0)))
                 .map_err(TestCaseError::fail)?;
+            let bounds = hexmesh::quality::Bounds::parse("hex-simple").expect("known bounds");
+            let v = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
+            prop_assert!(v.passed(), "{}", v);
         }
         Err(Error::Input {
             problem: InputError::Range { detail },

@@ -14,6 +14,7 @@ use crate::geom::{orient2d, Hexagon, Point};
 use crate::hex::lattice::{Key, Lattice};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Mesher, Params};
+use crate::quality;
 
 /// What a campaign found.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,11 +106,23 @@ pub fn fuzz_campaign(
                 "stopped early without a budget: {:?}",
                 run.stop_reason
             )),
-            Ok(run) => check_mesh(&run.mesh, &input.points, bounds).map(|stats| {
-                summary.worst_min_angle = summary.worst_min_angle.min(stats.min_angle);
-                summary.worst_max_angle = summary.worst_max_angle.max(stats.max_angle);
-                summary.max_triangles = summary.max_triangles.max(run.mesh.triangles.len());
-            }),
+            Ok(run) => check_mesh(&run.mesh, &input.points, bounds)
+                .and_then(|stats| {
+                    // The harness's own checks too: validity, one disc, and every bound the
+                    // mesher promises (radius ratio, shortest edge, Delaunay for `hex`).
+                    let promised = quality::Bounds::parse(mesher).ok();
+                    let v = quality::verdict(&run.mesh, Some(&input), promised.as_ref());
+                    if v.passed() {
+                        Ok(stats)
+                    } else {
+                        Err(format!("quality verdict failed:\n{v}"))
+                    }
+                })
+                .map(|stats| {
+                    summary.worst_min_angle = summary.worst_min_angle.min(stats.min_angle);
+                    summary.worst_max_angle = summary.worst_max_angle.max(stats.max_angle);
+                    summary.max_triangles = summary.max_triangles.max(run.mesh.triangles.len());
+                }),
             Err(Error::Input {
                 problem: InputError::Range { .. },
                 ..

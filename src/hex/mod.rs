@@ -23,13 +23,15 @@ pub mod subdivision;
 use std::time::Instant;
 
 use crate::error::{Error, InputError, Result};
-use crate::mesh::Pslg;
+use crate::geom::Point;
+use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
 
 pub use dual::Placement;
 pub use fuzz::{fuzz_campaign, FuzzFailure, FuzzSummary};
 pub use lattice::{Key, Lattice};
 pub use picture::{write_hexagons_svg, write_hierarchy_svg};
+pub use refine::{insert_points, InsertError};
 pub use subdivision::{Cell, Hierarchy, Stop};
 
 /// The simple hexagonal mesher (Sec. 4): angles in [30°, 120°].
@@ -115,5 +117,65 @@ pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, 
         Ok(()) => Ok((h, None)),
         Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),
         Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
+    }
+}
+
+/// A finished `hex-simple` mesh that accepts further points and refines only around them
+/// (paper 000 Sec. 1 and 9). The bounding hexagon stays the one of the first input, so added
+/// points must lie strictly inside it.
+#[derive(Debug, Clone)]
+pub struct IncrementalHexSimple {
+    hierarchy: Hierarchy,
+}
+
+impl IncrementalHexSimple {
+    /// Meshes `input` (a point set) to completion; a budget that stops the first meshing is an
+    /// error here, since a partial hierarchy cannot take more points.
+    pub fn new(input: &Pslg, params: &Params) -> Result<IncrementalHexSimple> {
+        let (hierarchy, stop) = mesh_with_hierarchy(input, params)?;
+        match stop {
+            None => Ok(IncrementalHexSimple { hierarchy }),
+            Some(why) => Err(Error::mesher("hex-simple", why)),
+        }
+    }
+
+    /// Adds points and refines locally. Returns the vertex indices they got in `mesh()`.
+    pub fn insert(&mut self, points: &[Point]) -> Result<Vec<u32>> {
+        insert_points(&mut self.hierarchy, points).map_err(|e| match e {
+            InsertError::NonFinite { point } => Error::mesher(
+                "hex-simple",
+                format!("added point ({}, {}) is not finite", point[0], point[1]),
+            ),
+            InsertError::Outside { point } => Error::mesher(
+                "hex-simple",
+                format!(
+                    "added point ({}, {}) does not lie strictly inside the bounding hexagon",
+                    point[0], point[1]
+                ),
+            ),
+            InsertError::Duplicate { point, existing } => Error::mesher(
+                "hex-simple",
+                format!(
+                    "added point ({}, {}) duplicates point {existing}",
+                    point[0], point[1]
+                ),
+            ),
+            InsertError::Stopped(Stop::Budget(why)) => {
+                Error::mesher("hex-simple", format!("stopped by the {why}"))
+            }
+            InsertError::Stopped(Stop::Precision(detail)) => {
+                Error::input(InputError::Range { detail })
+            }
+        })
+    }
+
+    /// The current mesh: input point i (first the initial points, then the added ones in
+    /// order) is vertex i.
+    pub fn mesh(&self) -> TriMesh {
+        dual::extract(&self.hierarchy, Placement::Relocated)
+    }
+
+    pub fn hierarchy(&self) -> &Hierarchy {
+        &self.hierarchy
     }
 }

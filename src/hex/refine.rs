@@ -8,6 +8,7 @@
 //! paper states: each occupied hexagon is a full hexagon holding one point, surrounded by a
 //! ring of full, unsubdivided, unoccupied hexagons.
 
+use crate::geom::Point;
 use crate::hex::lattice::Key;
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 
@@ -83,4 +84,49 @@ fn apply_rules(h: &mut Hierarchy, key: Key) -> Result<(), Stop> {
 /// hexagon is the outer half of a boundary cell and is no neighbour at all.
 pub fn is_fin(h: &Hierarchy, cell: Key) -> bool {
     matches!(h.cell(cell), Cell::Semi { owner, .. } if owner.inside())
+}
+
+/// Why a point could not be added to a refined hierarchy.
+#[derive(Debug, Clone, PartialEq)]
+pub enum InsertError {
+    /// The point has a NaN or infinite coordinate.
+    NonFinite { point: Point },
+    /// The point does not lie strictly inside the bounding hexagon, which a refined hierarchy
+    /// cannot grow.
+    Outside { point: Point },
+    /// The point equals input point `existing`.
+    Duplicate { point: Point, existing: u32 },
+    /// Refinement stopped (budget or precision).
+    Stopped(Stop),
+}
+
+/// Adds points to a refined hierarchy and refines locally (paper 000 Sec. 1 and 9: the
+/// iterative subdivision "allows incremental addition of further input points"): each point
+/// is located by the descent of `Hierarchy::leaf_of`, joins that leaf, and only that leaf goes
+/// on the work list of rules 1–5, so the work is proportional to the hexagons that change.
+/// Returns the indices the new points got; they are appended to `h.points`.
+pub fn insert_points(h: &mut Hierarchy, points: &[Point]) -> Result<Vec<u32>, InsertError> {
+    let root = h.lattice.root();
+    let mut ids = Vec::with_capacity(points.len());
+    for &p in points {
+        if !p[0].is_finite() || !p[1].is_finite() {
+            return Err(InsertError::NonFinite { point: p });
+        }
+        if !root.contains_strictly(p) {
+            return Err(InsertError::Outside { point: p });
+        }
+        let leaf = h.leaf_of(p);
+        if let Some(&existing) = h
+            .occupants(leaf)
+            .iter()
+            .find(|&&q| h.points[q as usize] == p)
+        {
+            return Err(InsertError::Duplicate { point: p, existing });
+        }
+        let id = h.add_point(leaf, p);
+        ids.push(id);
+        h.work.push(leaf);
+        drain(h).map_err(InsertError::Stopped)?;
+    }
+    Ok(ids)
 }

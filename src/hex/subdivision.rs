@@ -119,6 +119,15 @@ impl Hierarchy {
         self.occupants.contains_key(&key)
     }
 
+    /// Appends point `p` to the input points and assigns it to `leaf` (which must be the leaf
+    /// `leaf_of(p)` names). Returns its index.
+    pub fn add_point(&mut self, leaf: Key, p: Point) -> u32 {
+        let id = self.points.len() as u32;
+        self.points.push(p);
+        self.occupants.entry(leaf).or_default().push(id);
+        id
+    }
+
     /// What the cell `key` currently is.
     pub fn cell(&self, key: Key) -> Cell {
         if !key.inside() {

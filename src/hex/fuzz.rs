@@ -379,7 +379,7 @@ pub fn angle_deg(a: Point, b: Point, c: Point) -> f64 {
 }
 
 /// Writes the points of a failing case as a Triangle .node file under `fuzz-failures/`.
-fn write_failure(
+pub fn write_failure(
     mesher: &str,
     seed: u64,
     case: u64,
@@ -391,8 +391,9 @@ fn write_failure(
     let path = dir.join(format!("{mesher}-seed{seed}-case{case}-{family}.node"));
     let mut s = format!("# fuzz case {case} of seed {seed} ({family}) that failed {mesher}\n");
     if let Some(h) = input.hexagon {
+        // The directive `io::read_input` understands.
         s.push_str(&format!(
-            "# bounding hexagon: centre ({}, {}) circumradius {}\n",
+            "# hexmesh: hexagon {} {} {}\n",
             h.center[0], h.center[1], h.circumradius
         ));
     }

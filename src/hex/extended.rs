@@ -17,12 +17,20 @@
 //!   hexagon of each offending triangle is subdivided, and the rules run again. The count of such
 //!   subdivisions is reported so that fuzzing can find and name the configurations behind them.
 //!
+//! - A hexagon with fins centred on the boundary of the bounding hexagon is subdivided: moving
+//!   a boundary centre inwards spoils the boundary triangles (found on a 10-point set, where
+//!   such configurations repeated at every level).
+//!
 //! Status: not registered. The close pair and single points meet every Sec. 6 bound. On larger
-//! sets, subdividing MOVED_CENTER_3 hexagons cascades along straight lines of the hexagon mesh
-//! (each split makes the next hexagon a MOVED_CENTER_3), the rules run as global passes (one
-//! pass per step of such a cascade, so far from O(output)), and the verification splits can
-//! push hexagons below the size Sec. 6.3 promises (a 10-point set gave a shortest edge of 1e-4
-//! against a bound of 0.018). The missing piece is the MOVED_CENTER_3 topology of Sec. 5.4.
+//! sets three things remain. Subdividing MOVED_CENTER_3 hexagons cascades along straight lines
+//! of the hexagon mesh (each split makes the next hexagon a MOVED_CENTER_3). The rules run as
+//! global passes (one pass per step of such a cascade, far from O(output)). And an
+//! OCCUPIED_2 point can descend level after level: its 2-ring reaches coarser cells, making
+//! them full creates MOVED_CENTER_3 and ring hexagons with fins, their subdivision gives the
+//! occupied hexagon a fin, rule 5 splits it, and the point is OCCUPIED_2 again one level down
+//! (a 10-point set ended with a shortest edge of 0.00076·d_min against the promised 0.127).
+//! The missing piece is the MOVED_CENTER_3 topology of Sec. 5.4 (fin centres, Fig. 9) and
+//! MOVED_CENTER_4, after which the MOVED_CENTER_3 departure and its cascades go away.
 
 use std::time::Instant;
 
@@ -221,8 +229,10 @@ fn extended_actions(h: &Hierarchy) -> Vec<Key> {
             acts.push(key);
             continue;
         }
-        // A moved centre in the 1-ring of OCCUPIED_1 or the 1- or 2-ring of OCCUPIED_2.
-        if r.roles.contains_key(&key) {
+        // A moved centre in the 1-ring of OCCUPIED_1 or the 1- or 2-ring of OCCUPIED_2; and
+        // (departure) a hexagon with fins centred on the boundary of the bounding hexagon,
+        // whose centre cannot move inwards without spoiling the boundary triangles.
+        if r.roles.contains_key(&key) || key.on_boundary() {
             acts.push(key);
             continue;
         }

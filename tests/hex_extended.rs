@@ -6,6 +6,8 @@ use hexmesh::geom::{dist, Point};
 use hexmesh::hex::extended::{delaunay_violations, mesh_extended, min_angle_bound};
 use hexmesh::hex::fuzz::check_mesh;
 use hexmesh::{Hexagon, Params, Pslg, TriMesh};
+use rand::{RngExt, SeedableRng};
+use rand_pcg::Pcg64;
 
 fn radius_ratio(t: [Point; 3]) -> f64 {
     let (a, b, c) = (dist(t[1], t[2]), dist(t[0], t[2]), dist(t[0], t[1]));
@@ -60,11 +62,27 @@ fn close_pair_meets_the_extended_bounds() {
         ..Pslg::default()
     };
     let mesh = assert_extended_bounds(&input);
-    assert!(mesh.triangles.len() > 500);
+    assert!(mesh.triangles.len() > 300);
 }
 
 #[test]
 fn a_single_point_meets_the_extended_bounds() {
     let mesh = assert_extended_bounds(&Pslg::from_points(vec![[0.3, 0.7]]));
     assert_eq!(mesh.triangles.len(), 6);
+}
+
+#[test]
+fn ten_points_and_a_hundred_uniform_points_meet_the_extended_bounds() {
+    let pts = (0..10)
+        .map(|t| {
+            let s = t as f64 * 0.618_033_988_749_895;
+            [s.fract(), (s * 2.3).fract()]
+        })
+        .collect();
+    assert_extended_bounds(&Pslg::from_points(pts));
+    let mut rng = Pcg64::seed_from_u64(1);
+    let pts = (0..100)
+        .map(|_| [rng.random::<f64>(), rng.random::<f64>()])
+        .collect();
+    assert_extended_bounds(&Pslg::from_points(pts));
 }

@@ -54,6 +54,9 @@ pub struct Hierarchy {
     occupants: FxHashMap<Key, Vec<u32>>,
     /// Cells whose rules must be re-examined.
     pub(crate) work: Vec<Key>,
+    /// Hexagons subdivided since the log was last cleared (the extended rules re-examine the
+    /// cells around them).
+    pub(crate) log: Vec<Key>,
     /// Subdivisions so far (the mesher's steps).
     pub steps: u64,
     /// Full hexagons that are leaves, inside the bounding hexagon (about the dual's vertices).
@@ -79,6 +82,7 @@ impl Hierarchy {
             subdivided: FxHashSet::default(),
             occupants,
             work: Vec::new(),
+            log: Vec::new(),
             steps: 0,
             full_leaves: 1,
             budget,
@@ -213,6 +217,7 @@ impl Hierarchy {
         debug_assert_eq!(self.cell(key), Cell::Full { subdivided: false });
         self.subdivided.insert(key);
         self.steps += 1;
+        self.log.push(key);
         // The central child replaces `key` as a leaf; each edge child that is now full joined.
         for d in 0..6 {
             let child = key.edge_child(d);

@@ -40,26 +40,38 @@ pub fn extract_moved(
     moved: &FxHashMap<Key, Point>,
 ) -> (TriMesh, Vec<Key>) {
     let mut b = Builder::new(h, placement, moved);
-    let mut stack: Vec<[Key; 3]> = Vec::new();
+    // Each entry carries whether its three hexagons are subdivided (outside counts as
+    // subdivided), looked up once per distinct hexagon when the parent is split.
+    let state = |c: Key| (c, h.is_subdivided_or_outside(c));
+    let mut stack: Vec<[(Key, bool); 3]> = Vec::new();
     // The six lattice triangles around the root, counter-clockwise because the lattice
     // directions are listed counter-clockwise.
     for d in (0..6).rev() {
         stack.push([
-            Key::ROOT,
-            Key::ROOT.neighbor(d),
-            Key::ROOT.neighbor((d + 1) % 6),
+            state(Key::ROOT),
+            state(Key::ROOT.neighbor(d)),
+            state(Key::ROOT.neighbor((d + 1) % 6)),
         ]);
     }
     while let Some(tri) = stack.pop() {
-        if !tri.iter().any(|c| c.inside()) {
+        if !tri.iter().any(|c| c.0.inside()) {
             continue;
         }
-        let sub = tri.map(|c| h.is_subdivided_or_outside(c));
+        let sub = tri.map(|c| c.1);
+        let keys = tri.map(|c| c.0);
         match sub.iter().filter(|&&s| s).count() {
             3 => {
-                let [a, b2, c] = tri;
-                let (mab, mbc, mca) = (midpoint(a, b2), midpoint(b2, c), midpoint(c, a));
-                let (ca, cb, cc) = (a.central_child(), b2.central_child(), c.central_child());
+                let [a, b2, c] = keys;
+                let (mab, mbc, mca) = (
+                    state(midpoint(a, b2)),
+                    state(midpoint(b2, c)),
+                    state(midpoint(c, a)),
+                );
+                let (ca, cb, cc) = (
+                    state(a.central_child()),
+                    state(b2.central_child()),
+                    state(c.central_child()),
+                );
                 // Pushed in reverse so that they are emitted in this order.
                 stack.push([mab, mbc, mca]);
                 stack.push([mca, mbc, cc]);
@@ -69,12 +81,12 @@ pub fn extract_moved(
             2 => {
                 // Rotate so that the unsubdivided hexagon comes last: (A, B sub, C not).
                 let r = (0..3).find(|&r| !sub[(r + 2) % 3]).unwrap_or(0);
-                let [a, b2, c] = [tri[r], tri[(r + 1) % 3], tri[(r + 2) % 3]];
+                let [a, b2, c] = [keys[r], keys[(r + 1) % 3], keys[(r + 2) % 3]];
                 let m = midpoint(a, b2);
                 b.emit([m, b2, c]);
                 b.emit([a, m, c]);
             }
-            _ => b.emit(tri),
+            _ => b.emit(keys),
         }
     }
     b.finish()

@@ -71,15 +71,19 @@ impl Hierarchy {
     /// The root hexagon alone, holding every point. The caller has checked that each point lies
     /// strictly inside `lattice.root()`.
     pub fn new(lattice: Lattice, points: Vec<Point>, budget: Budget) -> Hierarchy {
-        let mut occupants = FxHashMap::default();
+        let mut occupants =
+            FxHashMap::with_capacity_and_hasher(points.len() + 1, Default::default());
         if !points.is_empty() {
             occupants.insert(Key::ROOT, (0..points.len() as u32).collect());
         }
+        // About seven subdivisions per point on uniform sets: reserving spares the rehashing of
+        // tables that outgrow the caches.
+        let expected = 8 * points.len() + 64;
         Hierarchy {
             level_limit: level_limit(&lattice),
             lattice,
             points,
-            subdivided: FxHashSet::default(),
+            subdivided: FxHashSet::with_capacity_and_hasher(expected, Default::default()),
             occupants,
             work: Vec::new(),
             log: Vec::new(),

@@ -10,6 +10,7 @@ pub mod geom;
 pub mod mesh;
 pub mod mesher;
 pub mod registry;
+pub mod rhomb;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};

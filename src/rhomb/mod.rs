@@ -1,0 +1,107 @@
+//! `rhomb`: the rhomboidal quad-tree mesher of Neugebauer & Diekmann, "Improved Mesh Generation:
+//! Not Simple but Good" (paper 001), for point sets inside their bounding hexagon.
+//!
+//! Steps (paper Sec. 4): root rhomb (`lattice`), split crowded rhombs with 2:1 balance (`tree`,
+//! steps 1–3), centre every point in a patch of melted rhombs (`centring`, steps 4–5, Sec. 5.4),
+//! triangulate rhombs by the fixed patterns and the patches (`patterns`, steps 10 and 12).
+//! Promise: every angle in [30°, 90°]; the mesh covers the bounding hexagon; every input point is
+//! a vertex bit-exactly (vertex i is input point i); the six hexagon corners are vertices.
+//! Inputs with segments (paper Sec. 5.1–5.8: moving conditions, border-boxes, polygon corners)
+//! are refused.
+
+mod centring;
+mod lattice;
+mod patterns;
+mod tree;
+
+use std::time::Instant;
+
+use crate::error::{Error, Result};
+use crate::mesh::Pslg;
+use crate::mesher::{MeshRun, Mesher, Params};
+
+use lattice::Frame;
+use tree::{Guard, Stop, Tree};
+
+/// The rhomboidal quad-tree mesher (paper 001), point sets only.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Rhomb;
+
+const NAME: &str = "rhomb";
+
+impl Mesher for Rhomb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn version(&self) -> String {
+        format!("hexmesh {} (point sets)", env!("CARGO_PKG_VERSION"))
+    }
+
+    fn settings(&self, params: &Params) -> String {
+        let mut s = String::from("window x=5; melted centring patches; bounds 30-90 deg fixed");
+        if params.min_angle.is_some() || params.max_area.is_some() {
+            s.push_str("; min_angle and max_area ignored");
+        }
+        s
+    }
+
+    fn supports_segments(&self) -> bool {
+        false
+    }
+
+    fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        let start = Instant::now();
+        if input.has_segments() {
+            return Err(Error::mesher(
+                NAME,
+                "rhomb meshes point sets only; PSLG support (paper 001 Sec. 5.1-5.8) is not \
+                 implemented",
+            ));
+        }
+        input.validate_input()?;
+        let hex = input.bounding_hexagon();
+        if !(hex.circumradius.is_finite() && hex.circumradius > 0.0) {
+            return Err(Error::mesher(
+                NAME,
+                format!("the bounding hexagon has circumradius {}", hex.circumradius),
+            ));
+        }
+        if let Some(i) = input.points.iter().position(|&p| !hex.contains_strictly(p)) {
+            return Err(Error::mesher(
+                NAME,
+                format!("point {i} does not lie strictly inside the bounding hexagon"),
+            ));
+        }
+        let frame = Frame::new(hex);
+        let coords = input.points.iter().map(|&p| frame.locate(p)).collect();
+        let mut tree = Tree::new(coords);
+        let guard = Guard::new(params.budget);
+        let n = input.points.len() as u32;
+        let outcome = tree
+            .split_crowded(&guard)
+            .and_then(|()| centring::centre_points(&mut tree, n, &guard));
+        let (patches, stop_reason) = match outcome {
+            Ok(patches) => (patches, None),
+            Err(Stop::Budget(reason)) => (Vec::new(), Some(reason)),
+            Err(Stop::Depth) => {
+                return Err(Error::mesher(
+                    NAME,
+                    format!(
+                        "input points too close together for the f64 lattice (more than {} \
+                         levels of rhombs needed)",
+                        lattice::MAX_LEVEL
+                    ),
+                ))
+            }
+        };
+        let mesh = patterns::triangulate(&tree, &frame, &input.points, &patches);
+        Ok(MeshRun {
+            mesh,
+            complete: stop_reason.is_none(),
+            stop_reason,
+            steps: tree.steps,
+            elapsed: start.elapsed(),
+        })
+    }
+}

@@ -1,0 +1,215 @@
+//! The promise of `rhomb` (paper 001, point sets): every angle in [30°, 90°] (1e-6° slack), a
+//! valid mesh covering the bounding hexagon, every input point a vertex bit-exactly, the six
+//! hexagon corners vertices.
+
+use std::collections::BTreeMap;
+
+use hexmesh::rhomb::Rhomb;
+use hexmesh::{datasets, Budget, Hexagon, Mesher, Params, Pslg, TriMesh};
+
+const SLACK: f64 = 1e-6;
+
+/// A small exact-where-it-matters checker (until `quality` lands): orientation by exact
+/// predicate, edge manifoldness, area, point and corner presence, angle range.
+fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
+    let hex = input.bounding_hexagon();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        let [a, b, c] = mesh.corners(t);
+        if tri.iter().any(|&v| v as usize >= mesh.vertices.len()) {
+            return Err(format!("triangle {t} names a missing vertex"));
+        }
+        if hexmesh::geom::orient2d(a, b, c) <= 0.0 {
+            return Err(format!("triangle {t} {tri:?} is not counter-clockwise"));
+        }
+    }
+    let mut edges: BTreeMap<(u32, u32), i32> = BTreeMap::new();
+    for tri in &mesh.triangles {
+        for e in 0..3 {
+            let (p, q) = (tri[e], tri[(e + 1) % 3]);
+            *edges.entry((p.min(q), p.max(q))).or_default() += if p < q { 1 } else { -1 };
+        }
+    }
+    let mut uses: BTreeMap<(u32, u32), usize> = BTreeMap::new();
+    for tri in &mesh.triangles {
+        for e in 0..3 {
+            let (p, q) = (tri[e], tri[(e + 1) % 3]);
+            *uses.entry((p.min(q), p.max(q))).or_default() += 1;
+        }
+    }
+    for (e, &n) in &uses {
+        if n > 2 || (n == 2 && edges[e] != 0) {
+            return Err(format!("edge {e:?} used {n} times or twice in one direction"));
+        }
+    }
+    let mut sorted: Vec<[u64; 2]> = mesh
+        .vertices
+        .iter()
+        .map(|p| [(p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits()])
+        .collect();
+    sorted.sort();
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err("duplicate vertices".into());
+    }
+    let area = mesh.area();
+    if (area - hex.area()).abs() > 1e-9 * hex.area() {
+        return Err(format!("area {area} differs from the hexagon's {}", hex.area()));
+    }
+    for (i, p) in input.points.iter().enumerate() {
+        let v = mesh.vertices.get(i).ok_or("missing input vertex")?;
+        if v[0].to_bits() != p[0].to_bits() || v[1].to_bits() != p[1].to_bits() {
+            return Err(format!("input point {i} is not vertex {i} bit-exactly"));
+        }
+    }
+    for c in hex.corners() {
+        if !mesh
+            .vertices
+            .iter()
+            .any(|v| v[0].to_bits() == c[0].to_bits() && v[1].to_bits() == c[1].to_bits())
+        {
+            return Err(format!("hexagon corner {c:?} is not a vertex"));
+        }
+    }
+    let used: std::collections::BTreeSet<u32> =
+        mesh.triangles.iter().flatten().copied().collect();
+    if used.len() != mesh.vertices.len() {
+        return Err("a vertex is used by no triangle".into());
+    }
+    let (mut lo, mut hi) = (180.0f64, 0.0f64);
+    for t in 0..mesh.triangles.len() {
+        let c = mesh.corners(t);
+        for k in 0..3 {
+            let (a, b, o) = (c[(k + 1) % 3], c[(k + 2) % 3], c[k]);
+            let u = [a[0] - o[0], a[1] - o[1]];
+            let w = [b[0] - o[0], b[1] - o[1]];
+            let ang = (u[0] * w[1] - u[1] * w[0])
+                .atan2(u[0] * w[0] + u[1] * w[1])
+                .to_degrees();
+            lo = lo.min(ang);
+            hi = hi.max(ang);
+        }
+    }
+    if lo < 30.0 - SLACK || hi > 90.0 + SLACK {
+        return Err(format!("angles [{lo}, {hi}] outside [30, 90]"));
+    }
+    Ok((lo, hi))
+}
+
+fn mesh_ok(input: &Pslg) -> TriMesh {
+    let run = Rhomb.mesh(input, &Params::default()).expect("rhomb meshes the point set");
+    assert!(run.complete, "{:?}", run.stop_reason);
+    if let Err(e) = check(input, &run.mesh) {
+        panic!("{e}");
+    }
+    run.mesh
+}
+
+#[test]
+fn close_pair_meets_the_bounds() {
+    let input = datasets::by_name("close-pair").unwrap();
+    let mesh = mesh_ok(&input);
+    assert!(mesh.triangles.len() < 20_000, "{}", mesh.triangles.len());
+}
+
+#[test]
+fn hundred_points_on_a_line_meet_the_bounds() {
+    mesh_ok(&datasets::by_name("line-100").unwrap());
+}
+
+#[test]
+fn hundred_points_in_the_plane_meet_the_bounds() {
+    mesh_ok(&datasets::by_name("plane-100").unwrap());
+}
+
+#[test]
+fn thousand_points_in_the_plane_meet_the_bounds() {
+    mesh_ok(&datasets::by_name("plane-1k").unwrap());
+}
+
+#[test]
+fn a_single_point_meets_the_bounds() {
+    mesh_ok(&Pslg::from_points(vec![[3.0, -2.0]]));
+}
+
+#[test]
+fn a_point_at_a_centroid_is_centred_by_the_melted_patch() {
+    // Centroid of a lattice triangle of the unit hexagon: the worst case for moving the nearest
+    // corner (Sec. 5.4), the reason patches are melted.
+    let input = Pslg {
+        points: vec![[0.5, 3f64.sqrt() / 6.0]],
+        hexagon: Some(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    mesh_ok(&input);
+}
+
+#[test]
+fn segments_are_refused_with_a_clear_error() {
+    let input = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+        segments: vec![[0, 1], [1, 2], [2, 0]],
+        ..Pslg::default()
+    };
+    let err = Rhomb.mesh(&input, &Params::default()).unwrap_err();
+    assert!(err.to_string().contains("point sets only"), "{err}");
+    assert!(!Rhomb.supports_segments());
+}
+
+#[test]
+fn a_point_outside_a_given_hexagon_is_refused() {
+    let input = Pslg {
+        points: vec![[5.0, 0.0]],
+        hexagon: Some(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    assert!(Rhomb.mesh(&input, &Params::default()).is_err());
+}
+
+#[test]
+fn a_step_budget_gives_an_incomplete_but_valid_mesh() {
+    let input = datasets::by_name("plane-100").unwrap();
+    let params = Params::default().with_budget(Budget {
+        max_steps: Some(50),
+        ..Budget::default()
+    });
+    let run = Rhomb.mesh(&input, &params).unwrap();
+    assert!(!run.complete);
+    assert!(run.stop_reason.is_some());
+    // No input points are inserted, but the mesh still covers the hexagon with the bounds.
+    let hex_only = Pslg {
+        points: vec![],
+        hexagon: Some(input.bounding_hexagon()),
+        ..Pslg::default()
+    };
+    check(&hex_only, &run.mesh).unwrap();
+}
+
+#[test]
+fn output_is_deterministic() {
+    let input = datasets::by_name("plane-100").unwrap();
+    let a = Rhomb.mesh(&input, &Params::default()).unwrap().mesh;
+    let b = Rhomb.mesh(&input, &Params::default()).unwrap().mesh;
+    assert_eq!(a, b);
+}
+
+#[test]
+#[ignore]
+fn print_stats() {
+    for name in ["close-pair", "line-100", "plane-100", "plane-1k"] {
+        let input = datasets::by_name(name).unwrap();
+        let run = Rhomb.mesh(&input, &Params::default()).unwrap();
+        let (lo, hi) = check(&input, &run.mesh).unwrap();
+        println!(
+            "{name}: {} vertices {} triangles steps {} angles [{lo:.6}, {hi:.6}] {:?}",
+            run.mesh.vertices.len(),
+            run.mesh.triangles.len(),
+            run.steps,
+            run.elapsed
+        );
+    }
+}

@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 
 use hexmesh::rhomb::Rhomb;
 use hexmesh::{datasets, Budget, Hexagon, Mesher, Params, Pslg, TriMesh};
+use proptest::prelude::*;
 
 const SLACK: f64 = 1e-6;
 
@@ -38,7 +39,9 @@ fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
     }
     for (e, &n) in &uses {
         if n > 2 || (n == 2 && edges[e] != 0) {
-            return Err(format!("edge {e:?} used {n} times or twice in one direction"));
+            return Err(format!(
+                "edge {e:?} used {n} times or twice in one direction"
+            ));
         }
     }
     let mut sorted: Vec<[u64; 2]> = mesh
@@ -52,7 +55,10 @@ fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
     }
     let area = mesh.area();
     if (area - hex.area()).abs() > 1e-9 * hex.area() {
-        return Err(format!("area {area} differs from the hexagon's {}", hex.area()));
+        return Err(format!(
+            "area {area} differs from the hexagon's {}",
+            hex.area()
+        ));
     }
     for (i, p) in input.points.iter().enumerate() {
         let v = mesh.vertices.get(i).ok_or("missing input vertex")?;
@@ -69,8 +75,7 @@ fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
             return Err(format!("hexagon corner {c:?} is not a vertex"));
         }
     }
-    let used: std::collections::BTreeSet<u32> =
-        mesh.triangles.iter().flatten().copied().collect();
+    let used: std::collections::BTreeSet<u32> = mesh.triangles.iter().flatten().copied().collect();
     if used.len() != mesh.vertices.len() {
         return Err("a vertex is used by no triangle".into());
     }
@@ -95,7 +100,9 @@ fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
 }
 
 fn mesh_ok(input: &Pslg) -> TriMesh {
-    let run = Rhomb.mesh(input, &Params::default()).expect("rhomb meshes the point set");
+    let run = Rhomb
+        .mesh(input, &Params::default())
+        .expect("rhomb meshes the point set");
     assert!(run.complete, "{:?}", run.stop_reason);
     if let Err(e) = check(input, &run.mesh) {
         panic!("{e}");
@@ -197,19 +204,103 @@ fn output_is_deterministic() {
     assert_eq!(a, b);
 }
 
-#[test]
-#[ignore]
-fn print_stats() {
-    for name in ["close-pair", "line-100", "plane-100", "plane-1k"] {
-        let input = datasets::by_name(name).unwrap();
-        let run = Rhomb.mesh(&input, &Params::default()).unwrap();
-        let (lo, hi) = check(&input, &run.mesh).unwrap();
-        println!(
-            "{name}: {} vertices {} triangles steps {} angles [{lo:.6}, {hi:.6}] {:?}",
-            run.mesh.vertices.len(),
-            run.mesh.triangles.len(),
-            run.steps,
-            run.elapsed
-        );
+/// True when the input asks for features below what f64 coordinates resolve: a point closer
+/// than a relative 1e-7 (of the largest coordinate) to another point or to the bounding
+/// hexagon's boundary. Only then may `rhomb` refuse with its rounding error.
+fn beyond_f64(input: &Pslg) -> bool {
+    let hex = input.bounding_hexagon();
+    let corners = hex.corners();
+    let scale = corners
+        .iter()
+        .flat_map(|p| [p[0].abs(), p[1].abs()])
+        .fold(0.0, f64::max);
+    let to_edge = input
+        .points
+        .iter()
+        .map(|&p| {
+            (0..6)
+                .map(|i| {
+                    let (a, b) = (corners[i], corners[(i + 1) % 6]);
+                    hexmesh::geom::orient2d(a, b, p).abs() / hexmesh::geom::dist(a, b)
+                })
+                .fold(f64::INFINITY, f64::min)
+        })
+        .fold(f64::INFINITY, f64::min);
+    let mut apart = f64::INFINITY;
+    for (i, &p) in input.points.iter().enumerate() {
+        for &q in &input.points[..i] {
+            apart = apart.min(hexmesh::geom::dist(p, q));
+        }
+    }
+    to_edge.min(apart) < 1e-7 * scale
+}
+
+fn proptest_mesh(points: Vec<[f64; 2]>) -> Result<(), TestCaseError> {
+    let input = Pslg::from_points(points);
+    prop_assume!(input.check().is_ok());
+    match Rhomb.mesh(&input, &Params::default()) {
+        Ok(run) => {
+            prop_assert!(run.complete);
+            check(&input, &run.mesh).map_err(TestCaseError::fail)?;
+        }
+        Err(e) => {
+            let text = e.to_string();
+            prop_assert!(
+                text.contains("f64 rounding") && beyond_f64(&input),
+                "refused an input f64 resolves: {}",
+                text
+            );
+        }
+    }
+    Ok(())
+}
+
+fn coord() -> impl Strategy<Value = f64> {
+    -1.0f64..1.0
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+
+    #[test]
+    fn uniform_point_sets_meet_the_bounds(pts in prop::collection::vec((coord(), coord()), 1..40)) {
+        proptest_mesh(pts.into_iter().map(|(x, y)| [x, y]).collect())?;
+    }
+
+    #[test]
+    fn clustered_point_sets_meet_the_bounds(
+        centres in prop::collection::vec((coord(), coord()), 1..4),
+        offsets in prop::collection::vec((0usize..4, -1e-3f64..1e-3, -1e-3f64..1e-3), 2..30),
+    ) {
+        let pts = offsets
+            .into_iter()
+            .map(|(c, dx, dy)| {
+                let (x, y) = centres[c % centres.len()];
+                [x + dx, y + dy]
+            })
+            .collect();
+        proptest_mesh(pts)?;
+    }
+
+    #[test]
+    fn near_duplicates_1e_6_apart_meet_the_bounds(
+        base in prop::collection::vec((coord(), coord(), 0.0f64..std::f64::consts::TAU), 3..12),
+    ) {
+        let pts = base
+            .into_iter()
+            .flat_map(|(x, y, a)| [[x, y], [x + 1e-6 * a.cos(), y + 1e-6 * a.sin()]])
+            .collect();
+        proptest_mesh(pts)?;
+    }
+
+    #[test]
+    fn scaled_point_sets_meet_the_bounds(
+        pts in prop::collection::vec((coord(), coord()), 1..25),
+        exponent in -3.0f64..3.0,
+        shift in (-3.0f64..3.0, -3.0f64..3.0),
+    ) {
+        let s = 10f64.powf(exponent);
+        let shift = (s * shift.0, s * shift.1);
+        proptest_mesh(pts.into_iter().map(|(x, y)| [shift.0 + s * x, shift.1 + s * y]).collect())?;
     }
 }

@@ -1,29 +1,46 @@
 //! Centring single points (paper 001, Sec. 4 step 5, Sec. 5.4–5.5 and Fig. 11).
 //!
-//! The paper moves the corner b nearest to p onto p when p is centred, and otherwise melts
-//! four rhombs into one of side 2l "offset by half" so that p is centred in it (the Claim of
-//! Sec. 5.4: dist > 0.6485 l' > 0.6 l'). We always take the melted form: with l the side of
-//! p's leaf, the patch is the hexagon of side 2L (L = 2l) of a lattice of spacing L centred at m,
-//! the level-k lattice vertex nearest to p. Then |p − m| ≤ l/√3 = 0.2887 L, inside the disc of
-//! radius (√3 − 1)/2·L = 0.366 L where all six triangles (p, A_i, A_{i+1}) keep every angle in
-//! [30°, 90°] (the nearest bound is the 90° at p: p must stay off the disc on A_iA_{i+1}).
-//! The outer ring of the patch (the paper's melted first and second neighbours) stays equilateral
-//! and is joined to the level-k rhombs around it by midpoints on its outer edges, giving
-//! 30-60-90 triangles as in pattern 10(c).
+//! Moving a lattice vertex m of spacing l onto p keeps all six triangles (p, A_i, A_{i+1}) in
+//! [30°, 90°] while |p − m| < (√3 − 1)/2·l = 0.366 l: the nearest bound is the 90° at p, which
+//! needs p off the disc on A_iA_{i+1} (Sec. 2 property 3, Table 2). We call p centred when the
+//! nearest level-k vertex is within `CENTRED` l; the paper's test (Sec. 5.4, three circles) is
+//! replaced by this disc, which is what Table 2's angles need.
 //!
-//! Departures, all by refining more (which is always safe): the patch's zone (its rhombs and
-//! every rhomb touching it) must be level-k leaves inside the hexagon; a coarser rhomb there is
-//! split, a finer one splits p's leaf instead, and two zones that meet split both points' leaves.
-//! These replace the paper's corner condition (Sec. 3) and protection (Sec. 4 step 5), whose
-//! missing figure leaves the size of the protected area open.
+//! As in Sec. 4 step 4: if p is not centred in its leaf but centred one level finer, the leaf is
+//! split; otherwise four rhombs are melted into one of side L = 2l "offset by half" (the Claim of
+//! Sec. 5.4): the patch is the hexagon of side 2L of a lattice of spacing L centred at m, the
+//! level-k vertex nearest to p, so |p − m| ≤ l/√3 = 0.2887 L < 0.366 L. The patch's outer ring
+//! (the paper's melted first and second neighbours) stays equilateral and is joined to the
+//! level-k rhombs around it by the midpoints of its outer edges, 30-60-90 as in pattern 10(c).
+//!
+//! Departures, all by refining more (always safe): a patch's zone (a moved vertex: its four
+//! rhombs; a melted patch: its rhombs and every rhomb touching it) must be level-k leaves inside
+//! the hexagon, and a moved vertex's six triangles must have no splitting point; a coarser rhomb
+//! there is split, a finer one splits p's leaf instead; two patches that share a triangle split
+//! both points' leaves. These replace the corner condition (Sec. 3) and the protection of
+//! Sec. 4 step 5, whose missing Fig. 11 detail leaves the protected area open.
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::lattice::{hexnorm, Cell};
+use super::lattice::{hexnorm, Cell, MAX_LEVEL};
+use super::patterns::hanging;
 use super::tree::{Cover, Guard, Stop, Tree};
 
-/// Circumradius of the patch in level-k steps (side 2L, L = 2l).
-pub const PATCH_RADIUS: i64 = 4;
+/// Circumradius of a melted patch in level-k steps (side 2L, L = 2l).
+pub const MELTED_RADIUS: i64 = 4;
+
+/// p is centred at a lattice vertex within this many sides of it (< 0.366, with room for the
+/// angles' rounding).
+const CENTRED: f64 = 0.33;
+
+/// How a patch carries its point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kind {
+    /// The lattice vertex m is moved onto p (Sec. 5.5).
+    Moved,
+    /// Melted rhombs of side 2l around m, whose centre is moved onto p (Sec. 5.4).
+    Melted,
+}
 
 /// One input point and the patch that carries it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -32,13 +49,33 @@ pub struct Patch {
     pub level: u8,
     /// The level-k lattice vertex m the patch is centred at.
     pub centre: (i64, i64),
+    pub kind: Kind,
 }
 
 impl Patch {
-    /// The level-k rhombs inside or touching the closed patch, in a fixed order.
+    /// Circumradius of the patch's own triangles in level-k steps.
+    pub fn radius(&self) -> i64 {
+        match self.kind {
+            Kind::Moved => 1,
+            Kind::Melted => MELTED_RADIUS,
+        }
+    }
+
+    /// The level-k rhombs that must be leaves: a moved vertex's four rhombs; a melted patch's
+    /// rhombs and every rhomb touching it, in a fixed order.
     pub fn zone(&self) -> Vec<Cell> {
+        if self.kind == Kind::Moved {
+            let mut cells: Vec<Cell> = self.halves().into_iter().map(|(c, _)| c).collect();
+            cells.dedup();
+            return cells;
+        }
+        self.touching()
+    }
+
+    /// The level-k rhombs inside or touching the closed patch, in a fixed order.
+    fn touching(&self) -> Vec<Cell> {
         let (mi, mj) = self.centre;
-        let r = PATCH_RADIUS;
+        let r = self.radius();
         let mut cells = Vec::new();
         for j in mj - r - 1..=mj + r {
             for i in mi - r - 1..=mi + r {
@@ -53,11 +90,13 @@ impl Patch {
         cells
     }
 
-    /// The halves (0 lower, 1 upper) of level-k rhombs that lie inside the patch.
+    /// The halves (0 lower, 1 upper) of level-k rhombs that lie inside the patch: the triangles
+    /// the patch triangulates itself.
     pub fn halves(&self) -> Vec<(Cell, u8)> {
         let (mi, mj) = self.centre;
-        let inside = |i: i64, j: i64| hexnorm(i - mi, j - mj) <= PATCH_RADIUS;
-        self.zone()
+        let r = self.radius();
+        let inside = |i: i64, j: i64| hexnorm(i - mi, j - mj) <= r;
+        self.touching()
             .into_iter()
             .flat_map(|c| {
                 let (i, j) = (c.i, c.j);
@@ -90,6 +129,13 @@ pub fn nearest_vertex(st: [f64; 2], level: u8) -> (i64, i64) {
     best
 }
 
+/// True when (s, t) lies within `CENTRED` level-k sides of the level-k vertex m.
+fn centred(st: [f64; 2], level: u8, m: (i64, i64)) -> bool {
+    let n = (1i64 << level) as f64;
+    let (dx, dy) = (st[0] * n - m.0 as f64, st[1] * n - m.1 as f64);
+    dx * dx + dx * dy + dy * dy <= CENTRED * CENTRED
+}
+
 /// Refines the tree until every point has a patch whose zone is made of level-k leaves inside
 /// the hexagon and meets no other zone; returns the patches in point order.
 pub fn centre_points(tree: &mut Tree, points: u32, guard: &Guard) -> Result<Vec<Patch>, Stop> {
@@ -99,34 +145,59 @@ pub fn centre_points(tree: &mut Tree, points: u32, guard: &Guard) -> Result<Vec<
         let mut patches = Vec::with_capacity(points as usize);
         for p in 0..points {
             let leaf = tree.locate(p);
+            let st = tree.coords(p);
+            let k = leaf.level;
+            let m = nearest_vertex(st, k);
+            let kind = if centred(st, k, m) {
+                Kind::Moved
+            } else if k < MAX_LEVEL && centred(st, k + 1, nearest_vertex(st, k + 1)) {
+                to_split.insert(leaf);
+                continue;
+            } else {
+                Kind::Melted
+            };
             let patch = Patch {
                 point: p,
-                level: leaf.level,
-                centre: nearest_vertex(tree.coords(p), leaf.level),
+                level: k,
+                centre: m,
+                kind,
             };
+            let mut fits = true;
             for c in patch.zone() {
                 if !c.in_hexagon() {
                     to_split.insert(leaf);
+                    fits = false;
                     break;
                 }
                 match tree.cover(c) {
                     Cover::Leaf(l) if l == c => {}
                     Cover::Leaf(coarser) => {
                         to_split.insert(coarser);
+                        fits = false;
                     }
                     Cover::Split | Cover::Outside => {
                         to_split.insert(leaf);
+                        fits = false;
                         break;
                     }
                 }
             }
+            if fits
+                && kind == Kind::Moved
+                && patch
+                    .halves()
+                    .iter()
+                    .any(|&(c, h)| hanging(tree, c, h).iter().any(|&s| s))
+            {
+                to_split.insert(leaf);
+            }
             patches.push(patch);
         }
         if to_split.is_empty() {
-            let mut claims: BTreeMap<Cell, u32> = BTreeMap::new();
+            let mut claims: BTreeMap<(Cell, u8), u32> = BTreeMap::new();
             for patch in &patches {
-                for c in patch.zone() {
-                    if let Some(other) = claims.insert(c, patch.point) {
+                for h in patch.halves() {
+                    if let Some(other) = claims.insert(h, patch.point) {
                         if other != patch.point {
                             to_split.insert(tree.locate(other));
                             to_split.insert(tree.locate(patch.point));
@@ -149,11 +220,24 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_patch_is_96_level_k_triangles_in_its_zone() {
+    fn a_moved_vertex_owns_six_triangles_of_four_rhombs() {
         let p = Patch {
             point: 0,
             level: 6,
             centre: (20, 30),
+            kind: Kind::Moved,
+        };
+        assert_eq!(p.halves().len(), 6);
+        assert_eq!(p.zone().len(), 4);
+    }
+
+    #[test]
+    fn a_melted_patch_is_96_level_k_triangles_in_its_zone() {
+        let p = Patch {
+            point: 0,
+            level: 6,
+            centre: (20, 30),
+            kind: Kind::Melted,
         };
         assert_eq!(p.halves().len(), 96);
         let zone: BTreeSet<Cell> = p.zone().into_iter().collect();

@@ -10,6 +10,8 @@
 //! are refused.
 
 mod centring;
+#[cfg(test)]
+mod fixtures;
 mod lattice;
 mod patterns;
 mod tree;
@@ -96,6 +98,7 @@ impl Mesher for Rhomb {
             }
         };
         let mesh = patterns::triangulate(&tree, &frame, &input.points, &patches);
+        rounding_check(&mesh)?;
         Ok(MeshRun {
             mesh,
             complete: stop_reason.is_none(),
@@ -104,4 +107,59 @@ impl Mesher for Rhomb {
             elapsed: start.elapsed(),
         })
     }
+}
+
+/// Angles may leave [30°, 90°] by this much, for rounding (DESIGN.md "Checks").
+pub const ANGLE_SLACK_DEG: f64 = 1e-6;
+
+/// The construction's angles are exactly 30°–90° (patterns) or inside it with margin (moved
+/// points); only the rounding of lattice vertices to f64 can push one out. That happens when
+/// the input forces triangles far smaller than the coordinates, e.g. a point a relative 1e-9
+/// from a fitted hexagon's edge at a distance from the origin. We refuse rather than return a
+/// mesh that breaks the promise.
+fn rounding_check(mesh: &crate::mesh::TriMesh) -> Result<()> {
+    let mut worst: Option<(f64, usize)> = None;
+    let mut shortest = f64::INFINITY;
+    for t in 0..mesh.triangles.len() {
+        let c = mesh.corners(t);
+        for k in 0..3 {
+            let (o, a, b) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
+            shortest = shortest.min(crate::geom::dist(o, a));
+            let angle = angle_deg(o, a, b);
+            let excess = (30.0 - angle).max(angle - 90.0);
+            if excess > ANGLE_SLACK_DEG && worst.is_none_or(|(w, _)| excess > w) {
+                worst = Some((excess, t));
+            }
+        }
+    }
+    match worst {
+        None => Ok(()),
+        Some((excess, t)) => {
+            let magnitude = mesh
+                .vertices
+                .iter()
+                .flat_map(|p| [p[0].abs(), p[1].abs()])
+                .fold(0.0, f64::max);
+            Err(Error::mesher(
+                NAME,
+                format!(
+                    "f64 rounding of the output coordinates puts an angle of triangle {t} \
+                     {excess:e} degrees outside [30, 90]: the input needs edges as short as \
+                     {shortest:e} next to coordinates as large as {magnitude:e} (points very \
+                     close together or to the bounding hexagon's edges); translate the input \
+                     nearer the origin or enlarge the hexagon"
+                ),
+            ))
+        }
+    }
+}
+
+/// The angle at `o` of the triangle (o, a, b), in degrees.
+fn angle_deg(o: crate::geom::Point, a: crate::geom::Point, b: crate::geom::Point) -> f64 {
+    let u = [a[0] - o[0], a[1] - o[1]];
+    let w = [b[0] - o[0], b[1] - o[1]];
+    (u[0] * w[1] - u[1] * w[0])
+        .abs()
+        .atan2(u[0] * w[0] + u[1] * w[1])
+        .to_degrees()
 }

@@ -9,7 +9,7 @@
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use super::centring::{Patch, PATCH_RADIUS};
+use super::centring::{Kind, Patch};
 use super::lattice::{hexnorm, key, Cell, Frame, VKey};
 use super::tree::Tree;
 use crate::geom::Point;
@@ -63,7 +63,10 @@ pub fn triangulate(tree: &Tree, frame: &Frame, points: &[Point], patches: &[Patc
         }
     }
     for patch in patches {
-        patch_triangles(&mut b, patch);
+        match patch.kind {
+            Kind::Moved => moved_triangles(&mut b, patch),
+            Kind::Melted => melted_triangles(&mut b, patch),
+        }
     }
     TriMesh {
         vertices: b.vertices,
@@ -74,27 +77,14 @@ pub fn triangulate(tree: &Tree, frame: &Frame, points: &[Point], patches: &[Patc
 /// One half of a leaf: 0 is (i,j),(i+1,j),(i,j+1) with sides bottom and left; 1 is
 /// (i+1,j),(i+1,j+1),(i,j+1) with sides right and top. The diagonal closes both.
 fn leaf_half(b: &mut Builder, tree: &Tree, c: Cell, half: u8) {
-    let (i, j) = (c.i, c.j);
-    let corners = if half == 0 {
-        [(i, j), (i + 1, j), (i, j + 1)]
-    } else {
-        [(i + 1, j), (i + 1, j + 1), (i, j + 1)]
-    };
+    let corners = half_corners(c, half);
     if !corners
         .iter()
         .all(|&(a, bb)| super::lattice::vertex_in_hexagon(c.level, a, bb))
     {
         return;
     }
-    // Sides in corner order: edge 0 = corners[0]→[1], 1 = [1]→[2], 2 = [2]→[0].
-    let (bottom, right, top, left) = ((0, -1), (1, 0), (0, 1), (-1, 0));
-    let lower_red = tree.side_split(c, bottom) && tree.side_split(c, left);
-    let upper_red = tree.side_split(c, right) && tree.side_split(c, top);
-    let split = if half == 0 {
-        [tree.side_split(c, bottom), upper_red, tree.side_split(c, left)]
-    } else {
-        [tree.side_split(c, right), tree.side_split(c, top), lower_red]
-    };
+    let split = hanging(tree, c, half);
     // Work one level finer, where the side midpoints are lattice vertices.
     let l = c.level + 1;
     let v = corners.map(|(a, bb)| (2 * a, 2 * bb));
@@ -121,15 +111,60 @@ fn leaf_half(b: &mut Builder, tree: &Tree, c: Cell, half: u8) {
     }
 }
 
+/// Which sides of a leaf half carry a splitting point, in corner order (edge e runs from
+/// corner e to corner e + 1 of `leaf_half`'s corners): a split same-size neighbour across a
+/// rhomb side, or, on the diagonal, the other half cut into four (both its sides split).
+pub(super) fn hanging(tree: &Tree, c: Cell, half: u8) -> [bool; 3] {
+    let (bottom, right, top, left) = ((0, -1), (1, 0), (0, 1), (-1, 0));
+    if half == 0 {
+        let upper_red = tree.side_split(c, right) && tree.side_split(c, top);
+        [
+            tree.side_split(c, bottom),
+            upper_red,
+            tree.side_split(c, left),
+        ]
+    } else {
+        let lower_red = tree.side_split(c, bottom) && tree.side_split(c, left);
+        [
+            tree.side_split(c, right),
+            tree.side_split(c, top),
+            lower_red,
+        ]
+    }
+}
+
+fn half_corners(c: Cell, half: u8) -> [(i64, i64); 3] {
+    let (i, j) = (c.i, c.j);
+    if half == 0 {
+        [(i, j), (i + 1, j), (i, j + 1)]
+    } else {
+        [(i + 1, j), (i + 1, j + 1), (i, j + 1)]
+    }
+}
+
+/// A moved vertex (Sec. 5.5): its six level-k triangles with p in m's place.
+fn moved_triangles(b: &mut Builder, patch: &Patch) {
+    for (c, half) in patch.halves() {
+        let tri = half_corners(c, half).map(|(i, j)| {
+            if (i, j) == patch.centre {
+                patch.point
+            } else {
+                b.lattice(key(c.level, i, j))
+            }
+        });
+        b.triangles.push(tri);
+    }
+}
+
 /// The patch of Sec. 5.4/5.5 in its melted form: 24 triangles of side L = 2l around m, the six
 /// at m taking the input point in m's place, and each outer edge split at its midpoint (a
 /// level-k vertex of the rhombs around the patch).
-fn patch_triangles(b: &mut Builder, patch: &Patch) {
+fn melted_triangles(b: &mut Builder, patch: &Patch) {
     let (mi, mj) = patch.centre;
     let k = patch.level;
     let at = |x: i64, y: i64| (mi + 2 * x, mj + 2 * y);
-    let on_rim = |(i, j): (i64, i64)| hexnorm(i - mi, j - mj) == PATCH_RADIUS;
-    let radius = PATCH_RADIUS / 2;
+    let on_rim = |(i, j): (i64, i64)| hexnorm(i - mi, j - mj) == patch.radius();
+    let radius = patch.radius() / 2;
     for y in -radius..radius {
         for x in -radius..radius {
             for t in [
@@ -143,7 +178,10 @@ fn patch_triangles(b: &mut Builder, patch: &Patch) {
                     let p = patch.point;
                     let next = at(t[(c + 1) % 3].0, t[(c + 1) % 3].1);
                     let prev = at(t[(c + 2) % 3].0, t[(c + 2) % 3].1);
-                    let (vn, vp) = (b.lattice(key(k, next.0, next.1)), b.lattice(key(k, prev.0, prev.1)));
+                    let (vn, vp) = (
+                        b.lattice(key(k, next.0, next.1)),
+                        b.lattice(key(k, prev.0, prev.1)),
+                    );
                     b.triangles.push([p, vn, vp]);
                     continue;
                 }

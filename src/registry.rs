@@ -6,7 +6,7 @@ use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![]
+    vec![Box::new(crate::rhomb::Rhomb)]
 }
 
 /// The names of the registered meshers, in report order.

@@ -258,3 +258,61 @@ mod tests {
         }
     }
 }
+
+#[cfg(test)]
+mod star_tests {
+    use super::CENTRED;
+    use crate::rhomb::angle_deg;
+
+    /// Extreme angles of the six triangles (p, A_i, A_{i+1}) of the unit hexagon around the
+    /// origin with the centre moved to p.
+    fn star(p: [f64; 2]) -> (f64, f64) {
+        let a: Vec<[f64; 2]> = (0..6)
+            .map(|i| {
+                let t = std::f64::consts::PI / 3.0 * i as f64;
+                [t.cos(), t.sin()]
+            })
+            .collect();
+        let (mut lo, mut hi) = (180.0f64, 0.0f64);
+        for i in 0..6 {
+            let tri = [p, a[i], a[(i + 1) % 6]];
+            for k in 0..3 {
+                let x = angle_deg(tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                lo = lo.min(x);
+                hi = hi.max(x);
+            }
+        }
+        (lo, hi)
+    }
+
+    #[test]
+    fn a_centred_point_keeps_its_star_within_30_to_90_degrees() {
+        for k in 0..720 {
+            let t = std::f64::consts::PI / 360.0 * k as f64;
+            let (lo, hi) = star([CENTRED * t.cos(), CENTRED * t.sin()]);
+            assert!((30.0..=90.0).contains(&lo) && hi <= 90.0, "{k}: {lo} {hi}");
+        }
+    }
+
+    #[test]
+    fn the_centring_disc_is_tight_towards_an_edge_midpoint() {
+        // (√3 − 1)/2 = 0.366: a little further towards the middle of A_0A_1 the angle at p
+        // passes 90° (Sec. 2 property 3 holds along edges, not between them).
+        let t = std::f64::consts::PI / 6.0;
+        let (_, hi) = star([0.37 * t.cos(), 0.37 * t.sin()]);
+        assert!(hi > 90.0);
+        let (_, hi) = star([0.36 * t.cos(), 0.36 * t.sin()]);
+        assert!(hi < 90.0);
+    }
+
+    #[test]
+    fn a_melted_patch_centres_every_point_of_a_voronoi_cell() {
+        // |p − m| ≤ l/√3 = L/(2√3) in units of the melted side L.
+        let r = 1.0 / (2.0 * 3f64.sqrt());
+        for k in 0..720 {
+            let t = std::f64::consts::PI / 360.0 * k as f64;
+            let (lo, hi) = star([r * t.cos(), r * t.sin()]);
+            assert!(lo >= 30.0 && hi <= 90.0, "{k}: {lo} {hi}");
+        }
+    }
+}

@@ -155,7 +155,11 @@ fn rounding_check(mesh: &crate::mesh::TriMesh) -> Result<()> {
 }
 
 /// The angle at `o` of the triangle (o, a, b), in degrees.
-fn angle_deg(o: crate::geom::Point, a: crate::geom::Point, b: crate::geom::Point) -> f64 {
+pub(crate) fn angle_deg(
+    o: crate::geom::Point,
+    a: crate::geom::Point,
+    b: crate::geom::Point,
+) -> f64 {
     let u = [a[0] - o[0], a[1] - o[1]];
     let w = [b[0] - o[0], b[1] - o[1]];
     (u[0] * w[1] - u[1] * w[0])

@@ -203,3 +203,63 @@ fn melted_triangles(b: &mut Builder, patch: &Patch) {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Hexagon;
+    use crate::rhomb::angle_deg;
+    use crate::rhomb::tree::index_at;
+
+    fn sorted_angles(m: &TriMesh, t: usize) -> [f64; 3] {
+        let c = m.corners(t);
+        let mut a = [0, 1, 2].map(|k| angle_deg(c[k], c[(k + 1) % 3], c[(k + 2) % 3]));
+        a.sort_by(f64::total_cmp);
+        a
+    }
+
+    #[test]
+    fn every_leaf_pattern_is_equilateral_or_30_60_90() {
+        let mut tree = Tree::new(vec![]);
+        // A graded tree: split towards one spot so that every pattern of step 10 occurs.
+        let mut c = Cell::ROOT;
+        for _ in 0..6 {
+            tree.split(c).unwrap();
+            let l = c.level + 1;
+            c = Cell::new(l, index_at(0.37, l), index_at(0.55, l));
+        }
+        let frame = Frame::new(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        });
+        let mesh = triangulate(&tree, &frame, &[], &[]);
+        let (mut equilateral, mut right) = (0, 0);
+        for t in 0..mesh.triangles.len() {
+            let a = sorted_angles(&mesh, t);
+            let near = |x: [f64; 3]| (0..3).all(|k| (a[k] - x[k]).abs() < 1e-9);
+            if near([60.0, 60.0, 60.0]) {
+                equilateral += 1;
+            } else if near([30.0, 60.0, 90.0]) {
+                right += 1;
+            } else {
+                panic!("triangle {t} has angles {a:?}");
+            }
+        }
+        assert!(equilateral > 0 && right > 0);
+        let area: f64 = mesh.area();
+        assert!((area - 1.5 * 3f64.sqrt()).abs() < 1e-12);
+    }
+
+    #[test]
+    fn hanging_marks_the_diagonal_of_a_half_beside_a_red_half() {
+        let mut tree = Tree::new(vec![]);
+        tree.split(Cell::ROOT).unwrap();
+        tree.split(Cell::new(1, 1, 0)).unwrap();
+        tree.split(Cell::new(1, 0, 1)).unwrap();
+        // Cell (1,0,0) has its right and top neighbours split: its upper half is cut into four,
+        // its lower half has the splitting point on the diagonal.
+        let c = Cell::new(1, 0, 0);
+        assert_eq!(hanging(&tree, c, 1), [true, true, false]);
+        assert_eq!(hanging(&tree, c, 0), [false, true, false]);
+    }
+}

@@ -304,3 +304,31 @@ proptest! {
         proptest_mesh(pts.into_iter().map(|(x, y)| [shift.0 + s * x, shift.1 + s * y]).collect())?;
     }
 }
+
+#[test]
+fn max_area_bounds_every_triangle() {
+    let input = datasets::by_name("plane-100").unwrap();
+    let limit = input.bounding_hexagon().area() / 20_000.0;
+    let coarse = Rhomb.mesh(&input, &Params::default()).unwrap().mesh;
+    let run = Rhomb
+        .mesh(&input, &Params::default().with_max_area(limit))
+        .unwrap();
+    assert!(run.complete);
+    check(&input, &run.mesh).unwrap();
+    let largest = (0..run.mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = run.mesh.corners(t);
+            0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]))
+        })
+        .fold(0.0, f64::max);
+    assert!(largest <= limit, "{largest} > {limit}");
+    assert!(run.mesh.triangles.len() > coarse.triangles.len());
+}
+
+#[test]
+fn a_non_positive_max_area_is_refused() {
+    let input = datasets::by_name("close-pair").unwrap();
+    assert!(Rhomb
+        .mesh(&input, &Params::default().with_max_area(0.0))
+        .is_err());
+}

@@ -53,6 +53,17 @@ pub struct Patch {
 }
 
 impl Patch {
+    /// The largest area a triangle of the patch can have, in units of l² (l the level-k side):
+    /// ½·base·height, the moved point at most its offset further from the base than m.
+    /// Moved: base l, height ≤ (√3/2 + 0.33)·l. Melted: base L = 2l, height ≤ (√3/2 + 1/(2√3))·L,
+    /// which also bounds the ring's equilateral L-triangles.
+    pub fn area_factor(&self) -> f64 {
+        match self.kind {
+            Kind::Moved => 0.5 * (3f64.sqrt() / 2.0 + CENTRED),
+            Kind::Melted => 0.5 * 4.0 * (3f64.sqrt() / 2.0 + 1.0 / (2.0 * 3f64.sqrt())),
+        }
+    }
+
     /// Circumradius of the patch's own triangles in level-k steps.
     pub fn radius(&self) -> i64 {
         match self.kind {
@@ -138,7 +149,13 @@ fn centred(st: [f64; 2], level: u8, m: (i64, i64)) -> bool {
 
 /// Refines the tree until every point has a patch whose zone is made of level-k leaves inside
 /// the hexagon and meets no other zone; returns the patches in point order.
-pub fn centre_points(tree: &mut Tree, points: u32, guard: &Guard) -> Result<Vec<Patch>, Stop> {
+/// `max_area`, when given, is in units of the root side squared.
+pub fn centre_points(
+    tree: &mut Tree,
+    points: u32,
+    max_area: Option<f64>,
+    guard: &Guard,
+) -> Result<Vec<Patch>, Stop> {
     loop {
         guard.check(tree)?;
         let mut to_split: BTreeSet<Cell> = BTreeSet::new();
@@ -162,6 +179,11 @@ pub fn centre_points(tree: &mut Tree, points: u32, guard: &Guard) -> Result<Vec<
                 centre: m,
                 kind,
             };
+            let side = 1.0 / (1i64 << k) as f64;
+            if max_area.is_some_and(|a| patch.area_factor() * side * side > a) {
+                to_split.insert(leaf);
+                continue;
+            }
             let mut fits = true;
             for c in patch.zone() {
                 if !c.in_hexagon() {

@@ -42,8 +42,11 @@ impl Mesher for Rhomb {
 
     fn settings(&self, params: &Params) -> String {
         let mut s = String::from("window x=5; melted centring patches; bounds 30-90 deg fixed");
-        if params.min_angle.is_some() || params.max_area.is_some() {
-            s.push_str("; min_angle and max_area ignored");
+        if let Some(a) = params.max_area {
+            s.push_str(&format!("; max_area {a}"));
+        }
+        if params.min_angle.is_some() {
+            s.push_str("; min_angle ignored");
         }
         s
     }
@@ -77,12 +80,32 @@ impl Mesher for Rhomb {
         }
         let frame = Frame::new(hex);
         let coords = input.points.iter().map(|&p| frame.locate(p)).collect();
-        let mut tree = Tree::new(coords);
+        // max_area in units of the root side 2R squared, and the coarsest level whose
+        // equilateral halves (√3/4·side²) respect it.
+        let root_side = 2.0 * hex.circumradius;
+        let max_area = match params.max_area {
+            None => None,
+            Some(a) if a > 0.0 && a.is_finite() => Some(a / (root_side * root_side)),
+            Some(a) => {
+                return Err(Error::mesher(
+                    NAME,
+                    format!("max_area must be positive and finite, not {a}"),
+                ))
+            }
+        };
+        let area_level = max_area.map_or(0, |a| {
+            let mut level = 0u8;
+            while level < lattice::MAX_LEVEL && 3f64.sqrt() / 4.0 * 0.25f64.powi(level as i32) > a {
+                level += 1;
+            }
+            level
+        });
+        let mut tree = Tree::new(coords, area_level);
         let guard = Guard::new(params.budget);
         let n = input.points.len() as u32;
         let outcome = tree
             .split_crowded(&guard)
-            .and_then(|()| centring::centre_points(&mut tree, n, &guard));
+            .and_then(|()| centring::centre_points(&mut tree, n, max_area, &guard));
         let (patches, stop_reason) = match outcome {
             Ok(patches) => (patches, None),
             Err(Stop::Budget(reason)) => (Vec::new(), Some(reason)),

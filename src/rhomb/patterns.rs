@@ -220,7 +220,7 @@ mod tests {
 
     #[test]
     fn every_leaf_pattern_is_equilateral_or_30_60_90() {
-        let mut tree = Tree::new(vec![]);
+        let mut tree = Tree::new(vec![], 0);
         // A graded tree: split towards one spot so that every pattern of step 10 occurs.
         let mut c = Cell::ROOT;
         for _ in 0..6 {
@@ -252,7 +252,7 @@ mod tests {
 
     #[test]
     fn hanging_marks_the_diagonal_of_a_half_beside_a_red_half() {
-        let mut tree = Tree::new(vec![]);
+        let mut tree = Tree::new(vec![], 0);
         tree.split(Cell::ROOT).unwrap();
         tree.split(Cell::new(1, 1, 0)).unwrap();
         tree.split(Cell::new(1, 0, 1)).unwrap();

@@ -86,6 +86,8 @@ pub struct Tree {
     pub steps: u64,
     /// Leaves created since the last drain, for the crowdedness work list.
     fresh: Vec<Cell>,
+    /// The coarsest level whose equilateral halves respect `Params::max_area`.
+    area_level: u8,
 }
 
 /// The level-k cell index of a root-normalised coordinate, clamped into the root.
@@ -95,8 +97,9 @@ pub fn index_at(s: f64, level: u8) -> i64 {
 }
 
 impl Tree {
-    /// The root rhomb (Sec. 4 step 1); its window holds every point.
-    pub fn new(coords: Vec<[f64; 2]>) -> Tree {
+    /// The root rhomb (Sec. 4 step 1); its window holds every point. Leaves coarser than
+    /// `area_level` are split as if crowded (a size bound, as Sec. 6 suggests for density).
+    pub fn new(coords: Vec<[f64; 2]>, area_level: u8) -> Tree {
         let mut leaves = BTreeMap::new();
         leaves.insert(Cell::ROOT, (0..coords.len() as u32).collect());
         Tree {
@@ -104,6 +107,7 @@ impl Tree {
             coords,
             steps: 0,
             fresh: vec![Cell::ROOT],
+            area_level,
         }
     }
 
@@ -216,7 +220,7 @@ impl Tree {
     /// points and the hexagon's edges; two hexagon edges are not counted, since they are lattice
     /// lines and need no separating (a departure that only saves rhombs).
     fn crowded(&self, c: Cell) -> bool {
-        if c.level < MIN_LEVEL {
+        if c.level < MIN_LEVEL.max(self.area_level) {
             return true;
         }
         let points = self.leaves.get(&c).map_or(0, Vec::len);
@@ -282,7 +286,7 @@ mod tests {
 
     #[test]
     fn splitting_deep_in_the_middle_keeps_the_tree_balanced() {
-        let mut tree = Tree::new(vec![[0.3, 0.4]]);
+        let mut tree = Tree::new(vec![[0.3, 0.4]], 0);
         let mut c = Cell::ROOT;
         for _ in 0..9 {
             tree.split(c).unwrap();
@@ -296,7 +300,7 @@ mod tests {
 
     #[test]
     fn crowded_splitting_separates_two_close_points() {
-        let mut tree = Tree::new(vec![[0.5, 0.5], [0.5 + 1e-4, 0.5]]);
+        let mut tree = Tree::new(vec![[0.5, 0.5], [0.5 + 1e-4, 0.5]], 0);
         tree.split_crowded(&Guard::new(Budget::default())).unwrap();
         let (a, b) = (tree.locate(0), tree.locate(1));
         assert_ne!(a, b);
@@ -306,7 +310,7 @@ mod tests {
 
     #[test]
     fn step_budget_stops_the_splitting() {
-        let mut tree = Tree::new(vec![[0.5, 0.5], [0.5 + 1e-9, 0.5]]);
+        let mut tree = Tree::new(vec![[0.5, 0.5], [0.5 + 1e-9, 0.5]], 0);
         let guard = Guard::new(Budget {
             max_steps: Some(10),
             ..Budget::default()

@@ -6,7 +6,13 @@ use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![Box::new(crate::rhomb::Rhomb)]
+    vec![
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::Cgal),
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::CgalConforming),
+        Box::new(crate::rhomb::Rhomb),
+    ]
 }
 
 /// The names of the registered meshers, in report order.

@@ -5,14 +5,20 @@
 use std::collections::BTreeMap;
 
 use hexmesh::rhomb::Rhomb;
-use hexmesh::{datasets, Budget, Hexagon, Mesher, Params, Pslg, TriMesh};
+use hexmesh::{datasets, quality, Budget, Hexagon, Mesher, Params, Pslg, TriMesh};
 use proptest::prelude::*;
 
 const SLACK: f64 = 1e-6;
 
-/// A small exact-where-it-matters checker (until `quality` lands): orientation by exact
-/// predicate, edge manifoldness, area, point and corner presence, angle range.
+/// The crate's verdict against the `rhomb` bounds (exact validity, [30°, 90°] with 1e-6°
+/// slack), plus what `rhomb` promises on top: the area of the bounding hexagon, vertex i is
+/// input point i bit-exactly, the six corners bit-exactly, and our own angle range.
 fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
+    let bounds = quality::Bounds::parse("rhomb").map_err(|e| e.to_string())?;
+    let verdict = quality::verdict(mesh, Some(input), Some(&bounds));
+    if !verdict.passed() {
+        return Err(format!("quality verdict failed:\n{verdict}"));
+    }
     let hex = input.bounding_hexagon();
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = mesh.corners(t);

@@ -21,6 +21,7 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::mesh::Pslg;
 use crate::mesher::{MeshRun, Mesher, Params};
+use crate::quality::ANGLE_SLACK_DEG;
 
 use lattice::Frame;
 use tree::{Guard, Stop, Tree};
@@ -131,9 +132,6 @@ impl Mesher for Rhomb {
         })
     }
 }
-
-/// Angles may leave [30°, 90°] by this much, for rounding (DESIGN.md "Checks").
-pub const ANGLE_SLACK_DEG: f64 = 1e-6;
 
 /// The construction's angles are exactly 30°–90° (patterns) or inside it with margin (moved
 /// points); only the rounding of lattice vertices to f64 can push one out. That happens when

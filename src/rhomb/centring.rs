@@ -20,11 +20,11 @@
 //! both points' leaves. These replace the corner condition (Sec. 3) and the protection of
 //! Sec. 4 step 5, whose missing Fig. 11 detail leaves the protected area open.
 
-use std::collections::{BTreeMap, BTreeSet};
+use std::collections::BTreeSet;
 
 use super::lattice::{hexnorm, Cell, MAX_LEVEL};
 use super::patterns::hanging;
-use super::tree::{Cover, Guard, Stop, Tree};
+use super::tree::{Cover, Guard, KeyMap, Stop, Tree};
 
 /// Circumradius of a melted patch in level-k steps (side 2L, L = 2l).
 pub const MELTED_RADIUS: i64 = 4;
@@ -216,7 +216,7 @@ pub fn centre_points(
             patches.push(patch);
         }
         if to_split.is_empty() {
-            let mut claims: BTreeMap<(Cell, u8), u32> = BTreeMap::new();
+            let mut claims: KeyMap<(Cell, u8), u32> = KeyMap::default();
             for patch in &patches {
                 for h in patch.halves() {
                     if let Some(other) = claims.insert(h, patch.point) {

@@ -7,11 +7,9 @@
 //! A third split side cannot occur: the tree splits such rhombs. Halves outside the bounding
 //! hexagon (Sec. 4 step 9) and halves covered by a patch are skipped.
 
-use std::collections::{BTreeMap, BTreeSet};
-
 use super::centring::{Kind, Patch};
 use super::lattice::{hexnorm, key, Cell, Frame, VKey};
-use super::tree::Tree;
+use super::tree::{KeyMap, KeySet, Tree};
 use crate::geom::Point;
 use crate::mesh::TriMesh;
 
@@ -20,7 +18,7 @@ use crate::mesh::TriMesh;
 struct Builder<'a> {
     frame: &'a Frame,
     vertices: Vec<Point>,
-    index: BTreeMap<VKey, u32>,
+    index: KeyMap<VKey, u32>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -48,13 +46,13 @@ pub fn triangulate(tree: &Tree, frame: &Frame, points: &[Point], patches: &[Patc
     let mut b = Builder {
         frame,
         vertices: Vec::new(),
-        index: BTreeMap::new(),
+        index: KeyMap::default(),
         triangles: Vec::new(),
     };
     if !patches.is_empty() {
         b.vertices.extend_from_slice(points);
     }
-    let covered: BTreeSet<(Cell, u8)> = patches.iter().flat_map(Patch::halves).collect();
+    let covered: KeySet<(Cell, u8)> = patches.iter().flat_map(Patch::halves).collect();
     for c in tree.leaves() {
         for half in 0..2u8 {
             if !covered.contains(&(c, half)) {

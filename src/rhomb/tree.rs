@@ -5,7 +5,8 @@
 //! Splits go through one work stack, never recursion, so that long balance cascades cannot
 //! overflow the call stack; every split is counted as a step for the budget.
 
-use std::collections::{BTreeMap, VecDeque};
+use std::collections::{HashMap, HashSet, VecDeque};
+use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Instant;
 
 use super::lattice::{Cell, AROUND, MAX_LEVEL, SIDES};
@@ -77,9 +78,50 @@ impl Guard {
     }
 }
 
+/// A fixed multiply-rotate hasher for cell and vertex keys: fast, and the same on every run
+/// (no map is ever iterated where its order could reach the output).
+#[derive(Default, Clone, Copy)]
+pub struct KeyHasher(u64);
+
+impl Hasher for KeyHasher {
+    fn finish(&self) -> u64 {
+        // MurmurHash3's fmix64, so that the low bits the table indexes by depend on every key bit.
+        let mut h = self.0;
+        h ^= h >> 33;
+        h = h.wrapping_mul(0xff51_afd7_ed55_8ccd);
+        h ^= h >> 33;
+        h = h.wrapping_mul(0xc4ce_b9fe_1a85_ec53);
+        h ^ (h >> 33)
+    }
+
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.write_u64(b as u64);
+        }
+    }
+
+    fn write_u8(&mut self, n: u8) {
+        self.write_u64(n as u64);
+    }
+
+    fn write_i64(&mut self, n: i64) {
+        self.write_u64(n as u64);
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.0 = (self.0.rotate_left(5) ^ n).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+/// Hash maps and sets keyed by cells or vertex keys.
+pub type KeyMap<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
+pub type KeySet<K> = HashSet<K, BuildHasherDefault<KeyHasher>>;
+
 /// The quad-tree: its leaves, each with the input points inside its crowdedness window.
 pub struct Tree {
-    leaves: BTreeMap<Cell, Vec<u32>>,
+    leaves: KeyMap<Cell, Vec<u32>>,
+    /// Cells that have been split, so that `cover` answers `Split` in one lookup.
+    internal: KeySet<Cell>,
     /// Root-normalised lattice coordinates of the input points.
     coords: Vec<[f64; 2]>,
     /// Splits made so far.
@@ -100,10 +142,11 @@ impl Tree {
     /// The root rhomb (Sec. 4 step 1); its window holds every point. Leaves coarser than
     /// `area_level` are split as if crowded (a size bound, as Sec. 6 suggests for density).
     pub fn new(coords: Vec<[f64; 2]>, area_level: u8) -> Tree {
-        let mut leaves = BTreeMap::new();
+        let mut leaves = KeyMap::default();
         leaves.insert(Cell::ROOT, (0..coords.len() as u32).collect());
         Tree {
             leaves,
+            internal: KeySet::default(),
             coords,
             steps: 0,
             fresh: vec![Cell::ROOT],
@@ -111,8 +154,11 @@ impl Tree {
         }
     }
 
-    pub fn leaves(&self) -> impl Iterator<Item = Cell> + '_ {
-        self.leaves.keys().copied()
+    /// The leaves in (level, i, j) order.
+    pub fn leaves(&self) -> Vec<Cell> {
+        let mut cells: Vec<Cell> = self.leaves.keys().copied().collect();
+        cells.sort_unstable();
+        cells
     }
 
     pub fn leaf_count(&self) -> usize {
@@ -123,12 +169,16 @@ impl Tree {
         if !c.in_root() {
             return Cover::Outside;
         }
+        if self.internal.contains(&c) {
+            return Cover::Split;
+        }
         let mut a = c;
         loop {
             if self.leaves.contains_key(&a) {
                 return Cover::Leaf(a);
             }
             if a.level == 0 {
+                // Unreachable for a tree grown from the root; answer as for a split cell.
                 return Cover::Split;
             }
             a = a.parent();
@@ -197,6 +247,7 @@ impl Tree {
 
     fn split_leaf(&mut self, c: Cell) {
         let window = self.leaves.remove(&c).unwrap_or_default();
+        self.internal.insert(c);
         for child in c.children() {
             // The child's window lies inside the parent's, so filtering the parent's list finds
             // every point of it.
@@ -260,7 +311,7 @@ mod tests {
     use super::*;
 
     fn balanced(tree: &Tree) -> bool {
-        tree.leaves().all(|c| {
+        tree.leaves().into_iter().all(|c| {
             AROUND.iter().all(|&(di, dj)| {
                 let n = c.offset(di, dj);
                 match tree.cover(n) {

@@ -13,16 +13,16 @@
 //! (the paper's melted first and second neighbours) stays equilateral and is joined to the
 //! level-k rhombs around it by the midpoints of its outer edges, 30-60-90 as in pattern 10(c).
 //!
-//! Departures, all by refining more (always safe): a patch's zone (a moved vertex: its four
-//! rhombs; a melted patch: its rhombs and every rhomb touching it) must be level-k leaves inside
-//! the hexagon, and a moved vertex's six triangles must have no splitting point; a coarser rhomb
-//! there is split, a finer one splits p's leaf instead; two patches that share a triangle split
+//! Departures, all by refining more (always safe): a patch's triangles must lie in the hexagon
+//! and its zone (a moved vertex: its four rhombs; a melted patch: its rhombs and every rhomb
+//! touching it) must be level-k leaves where it has a half inside the hexagon, and a moved
+//! vertex's six triangles must have no splitting point; a coarser rhomb there is split, a finer one splits p's leaf instead; two patches that share a triangle split
 //! both points' leaves. These replace the corner condition (Sec. 3) and the protection of
 //! Sec. 4 step 5, whose missing Fig. 11 detail leaves the protected area open.
 
 use std::collections::BTreeSet;
 
-use super::lattice::{hexnorm, Cell, MAX_LEVEL};
+use super::lattice::{half_in_hexagon, hexnorm, Cell, MAX_LEVEL};
 use super::patterns::hanging;
 use super::tree::{Cover, Guard, KeyMap, Stop, Tree};
 
@@ -184,12 +184,18 @@ pub fn centre_points(
                 to_split.insert(leaf);
                 continue;
             }
-            let mut fits = true;
+            // The patch's own triangles must lie in the hexagon; rhombs around it only where
+            // they have a half inside (the rest emits nothing).
+            let mut fits = patch.halves().iter().all(|&(c, h)| half_in_hexagon(c, h));
+            if !fits {
+                to_split.insert(leaf);
+            }
             for c in patch.zone() {
-                if !c.in_hexagon() {
-                    to_split.insert(leaf);
-                    fits = false;
+                if !fits {
                     break;
+                }
+                if !c.in_root() || !(half_in_hexagon(c, 0) || half_in_hexagon(c, 1)) {
+                    continue;
                 }
                 match tree.cover(c) {
                     Cover::Leaf(l) if l == c => {}
@@ -200,7 +206,6 @@ pub fn centre_points(
                     Cover::Split | Cover::Outside => {
                         to_split.insert(leaf);
                         fits = false;
-                        break;
                     }
                 }
             }

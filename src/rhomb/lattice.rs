@@ -79,13 +79,25 @@ impl Cell {
         let n = 1i64 << self.level;
         (0..n).contains(&self.i) && (0..n).contains(&self.j)
     }
+}
 
-    /// Both halves inside the closed bounding hexagon.
-    pub fn in_hexagon(self) -> bool {
-        [(0, 0), (1, 0), (0, 1), (1, 1)]
-            .iter()
-            .all(|&(a, b)| vertex_in_hexagon(self.level, self.i + a, self.j + b))
+/// The corners of half 0 ((i,j), (i+1,j), (i,j+1)) or half 1 ((i+1,j), (i+1,j+1), (i,j+1)) of a
+/// rhomb, counter-clockwise; the short diagonal (i+1,j)–(i,j+1) separates them.
+pub fn half_corners(c: Cell, half: u8) -> [(i64, i64); 3] {
+    let (i, j) = (c.i, c.j);
+    if half == 0 {
+        [(i, j), (i + 1, j), (i, j + 1)]
+    } else {
+        [(i + 1, j), (i + 1, j + 1), (i, j + 1)]
     }
+}
+
+/// A rhomb half inside the closed bounding hexagon (for level ≥ 1 a half is inside or outside
+/// as a whole).
+pub fn half_in_hexagon(c: Cell, half: u8) -> bool {
+    half_corners(c, half)
+        .iter()
+        .all(|&(i, j)| vertex_in_hexagon(c.level, i, j))
 }
 
 /// Level-k lattice vertex (i, j) inside the closed bounding hexagon: in root units
@@ -197,7 +209,7 @@ mod tests {
         // The root's corner triangles lie outside: vertex (0,0) and (2,2) in root units.
         assert!(!vertex_in_hexagon(1, 0, 0));
         assert!(!vertex_in_hexagon(1, 2, 2));
-        assert!(Cell::new(1, 1, 0).in_hexagon());
-        assert!(!Cell::new(1, 0, 0).in_hexagon());
+        assert!(half_in_hexagon(Cell::new(1, 1, 0), 0) && half_in_hexagon(Cell::new(1, 1, 0), 1));
+        assert!(!half_in_hexagon(Cell::new(1, 0, 0), 0) && half_in_hexagon(Cell::new(1, 0, 0), 1));
     }
 }

@@ -8,7 +8,7 @@
 //! hexagon (Sec. 4 step 9) and halves covered by a patch are skipped.
 
 use super::centring::{Kind, Patch};
-use super::lattice::{hexnorm, key, Cell, Frame, VKey};
+use super::lattice::{half_corners, half_in_hexagon, hexnorm, key, Cell, Frame, VKey};
 use super::tree::{KeyMap, KeySet, Tree};
 use crate::geom::Point;
 use crate::mesh::TriMesh;
@@ -75,13 +75,10 @@ pub fn triangulate(tree: &Tree, frame: &Frame, points: &[Point], patches: &[Patc
 /// One half of a leaf: 0 is (i,j),(i+1,j),(i,j+1) with sides bottom and left; 1 is
 /// (i+1,j),(i+1,j+1),(i,j+1) with sides right and top. The diagonal closes both.
 fn leaf_half(b: &mut Builder, tree: &Tree, c: Cell, half: u8) {
-    let corners = half_corners(c, half);
-    if !corners
-        .iter()
-        .all(|&(a, bb)| super::lattice::vertex_in_hexagon(c.level, a, bb))
-    {
+    if !half_in_hexagon(c, half) {
         return;
     }
+    let corners = half_corners(c, half);
     let split = hanging(tree, c, half);
     // Work one level finer, where the side midpoints are lattice vertices.
     let l = c.level + 1;
@@ -128,15 +125,6 @@ pub(super) fn hanging(tree: &Tree, c: Cell, half: u8) -> [bool; 3] {
             tree.side_split(c, top),
             lower_red,
         ]
-    }
-}
-
-fn half_corners(c: Cell, half: u8) -> [(i64, i64); 3] {
-    let (i, j) = (c.i, c.j);
-    if half == 0 {
-        [(i, j), (i + 1, j), (i, j + 1)]
-    } else {
-        [(i + 1, j), (i + 1, j + 1), (i, j + 1)]
     }
 }
 

@@ -268,16 +268,28 @@ impl Tree {
     }
 
     /// Crowded (Sec. 3): the 5×-window holds two foreign elements. Elements here are the input
-    /// points and the hexagon's edges; two hexagon edges are not counted, since they are lattice
-    /// lines and need no separating (a departure that only saves rhombs).
+    /// points and the hexagon's edges. Departures, both for point sets only: two hexagon edges
+    /// are not counted, since they are lattice lines and need no separating; a point and an
+    /// edge crowd only the rhomb holding the point. The rhombs between a point and the edge
+    /// need no splitting of their own (the centring patch keeps its triangles inside, Sec. 5.4),
+    /// and splitting them made that band finer than the point's rhomb, which then had to follow:
+    /// edges a 26th of the gap, too short for f64 at a distance from the origin (fixture
+    /// `a_point_near_the_fitted_edge_away_from_the_origin_is_meshed`).
     fn crowded(&self, c: Cell) -> bool {
         if c.level < MIN_LEVEL.max(self.area_level) {
             return true;
         }
-        let points = self.leaves.get(&c).map_or(0, Vec::len);
-        match points {
-            0 => false,
-            1 => !window_in_hexagon(c),
+        let window = match self.leaves.get(&c) {
+            Some(w) => w,
+            None => return false,
+        };
+        match window.as_slice() {
+            [] => false,
+            &[p] => {
+                let [s, t] = self.coords[p as usize];
+                let holds = index_at(s, c.level) == c.i && index_at(t, c.level) == c.j;
+                holds && !window_in_hexagon(c)
+            }
             _ => true,
         }
     }

@@ -358,3 +358,39 @@ fn a_point_near_the_fitted_edge_away_from_the_origin_is_meshed() {
     ]);
     mesh_ok(&input);
 }
+
+#[test]
+fn points_closer_than_the_lattice_depth_are_refused() {
+    let input = Pslg {
+        points: vec![[0.0, 0.0], [1e-16, 0.0]],
+        hexagon: Some(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    let err = Rhomb.mesh(&input, &Params::default()).unwrap_err();
+    assert!(err.to_string().contains("too close together"), "{err}");
+}
+
+#[test]
+fn time_and_vertex_budgets_stop_the_refinement() {
+    let input = datasets::by_name("plane-1k").unwrap();
+    let timed = Params::default().with_budget(Budget {
+        max_time: Some(std::time::Duration::ZERO),
+        ..Budget::default()
+    });
+    let run = Rhomb.mesh(&input, &timed).unwrap();
+    assert!(!run.complete && run.stop_reason.as_deref().unwrap_or("").contains("time"));
+    let capped = Params::default().with_budget(Budget {
+        max_vertices: Some(1000),
+        ..Budget::default()
+    });
+    let run = Rhomb.mesh(&input, &capped).unwrap();
+    assert!(!run.complete && run.stop_reason.as_deref().unwrap_or("").contains("vertex"));
+    assert!(
+        run.mesh.vertices.len() < 3000,
+        "{}",
+        run.mesh.vertices.len()
+    );
+}

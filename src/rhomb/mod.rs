@@ -7,7 +7,11 @@
 //! Promise: every angle in [30°, 90°]; the mesh covers the bounding hexagon; every input point is
 //! a vertex bit-exactly (vertex i is input point i); the six hexagon corners are vertices.
 //! Inputs with segments (paper Sec. 5.1–5.8: moving conditions, border-boxes, polygon corners)
-//! are refused.
+//! are refused, as are points closer than 2^-48 of the hexagon (the lattice depth) and inputs
+//! whose needed triangles are too small for f64 output to keep the angles within 1e-6° (see
+//! `rounding_check`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
+//! one output vertex each). A run stopped by a budget returns the balanced tree's triangulation
+//! without the input points (`complete == false`), which still meets the angle bounds.
 
 mod centring;
 #[cfg(test)]

@@ -8,6 +8,7 @@ pub mod error;
 pub mod geom;
 pub mod mesh;
 pub mod mesher;
+pub mod refine;
 pub mod registry;
 
 pub use error::{Error, InputError, Result};

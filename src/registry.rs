@@ -6,7 +6,10 @@ use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![]
+    vec![
+        Box::new(crate::refine::Saalfeld::default()),
+        Box::new(crate::refine::Lsb::default()),
+    ]
 }
 
 /// The names of the registered meshers, in report order.

@@ -241,22 +241,24 @@ impl Engine {
     }
 
     /// Splits edge ab at its midpoint in every triangle on it, after Rivara propagation has
-    /// made it a longest side of each. `Ok(None)` when a budget stopped the refinement.
+    /// made it a longest side of each. `Ok(None)` when a budget stopped the refinement or the
+    /// edge is no longer in the mesh (a flip during propagation removed it).
     fn split_edge(&mut self, a: u32, b: u32) -> Result<Option<u32>> {
         if self.stop.is_some() {
             return Ok(None);
         }
-        if let Some(&m) = self.mid.get(&ekey(a, b)) {
-            return Ok(Some(m));
-        }
         // Each propagated split is along a strictly longer edge, so this terminates.
         loop {
+            if let Some(&m) = self.mid.get(&ekey(a, b)) {
+                return Ok(Some(m));
+            }
             let mut propagated = false;
             for (x, y) in [(a, b), (b, a)] {
                 if let Some(&id) = self.by_edge.get(&(x, y)) {
                     if !self.is_a_longest(id, x, y) {
                         let (p, q) = self.longest(id);
-                        if self.split_edge(p, q)?.is_none() {
+                        self.split_edge(p, q)?;
+                        if self.stop.is_some() {
                             return Ok(None);
                         }
                         propagated = true;
@@ -267,6 +269,9 @@ impl Engine {
             if !propagated {
                 break;
             }
+        }
+        if !self.by_edge.contains_key(&(a, b)) && !self.by_edge.contains_key(&(b, a)) {
+            return Ok(None);
         }
         if let Some(reason) = self.limits.exceeded(self.splits, self.v.len() + 1) {
             self.stop = Some(reason);
@@ -326,10 +331,8 @@ impl Engine {
     /// with C = w and B the end of xy nearer to C, |BC| ≥ |CC'| ≥ |BC'|. Squared lengths in
     /// f64: the test picks between two valid splits, it decides no topology.
     fn condition2(&self, x: u32, y: u32, w: u32, m: u32) -> bool {
-        let bc = len2(&self.v, x, w).min(len2(&self.v, y, w));
-        let cc = len2(&self.v, w, m);
-        let bcp = len2(&self.v, x, y) / 4.0;
-        bc >= cc && cc >= bcp
+        let p = |i: u32| self.v[i as usize];
+        condition2_points(p(x), p(y), p(w), p(m))
     }
 
     /// Rule 4.1: once both children of a (2)-triangle are bisected, flip CC' to A'B'.
@@ -378,6 +381,10 @@ impl Engine {
         let Some(&[a, b, c, cp]) = self.pending.get(&key) else {
             return Ok(());
         };
+        if !self.pending_alive([a, b, c, cp]) {
+            self.pending.remove(&key);
+            return Ok(());
+        }
         for (s, child) in [(a, [a, cp, c]), (b, [cp, b, c])] {
             if self.stop.is_some() {
                 return Ok(());
@@ -404,9 +411,27 @@ impl Engine {
         Ok(())
     }
 
-    /// One level of uniform refinement: every triangle alive at the start is split once
-    /// (into four when (2) holds and the rule is modified), then half-done quaternaries
-    /// are finished.
+    /// True while the two triangles on CC' are the children of the recorded (2)-triangle ABC,
+    /// or their bisections along AC and BC. A flip elsewhere (of the parent's own quaternary)
+    /// can remove a child; the record is then dead and must not drive further splits.
+    fn pending_alive(&self, [a, b, c, cp]: Pending) -> bool {
+        let (Some(&t1), Some(&t2)) = (self.by_edge.get(&(c, cp)), self.by_edge.get(&(cp, c)))
+        else {
+            return false;
+        };
+        let p = self.rotated(t1, c)[2];
+        let q = self.rotated(t2, cp)[2];
+        let side = |s: u32, x: u32| x == s || self.mid.get(&ekey(s, c)) == Some(&x);
+        (side(a, p) && side(b, q)) || (side(a, q) && side(b, p))
+    }
+
+    /// One level of uniform refinement: every triangle alive at the start is split once by
+    /// Definition 3.2 (into four when (2) holds and the rule is modified, else bisected). A
+    /// start triangle that Rivara propagation already bisected is completed to its four at
+    /// its turn. Triangles made during the level and bisected by propagation are left to
+    /// rule 4.1: completing them too would split edges shorter than the longest, which can
+    /// cascade to ever smaller triangles (propagation is well-founded only towards longer
+    /// edges), so a conforming mesh cannot in general stay inside the family T(A, B, C).
     fn uniform_level(&mut self) -> Result<()> {
         let start: Vec<u32> = (0..self.t.len() as u32)
             .filter(|&i| self.alive[i as usize])
@@ -415,23 +440,33 @@ impl Engine {
             if self.stop.is_some() {
                 return Ok(());
             }
-            if !self.alive[id as usize] {
-                continue;
+            if self.alive[id as usize] {
+                let (a, b) = self.longest(id);
+                let Some(m) = self.split_edge(a, b)? else {
+                    // Stopped by the budget, or a flip during propagation took the edge away.
+                    continue;
+                };
+                let [_, _, w] = self.rotated_any(id, a, b);
+                if self.modified {
+                    self.finish_quaternary(ekey(w, m))?;
+                }
+            } else if self.modified {
+                let tri = self.t[id as usize];
+                for k in 0..3 {
+                    let (x, y, w) = (tri[k], tri[(k + 1) % 3], tri[(k + 2) % 3]);
+                    let Some(&m) = self.mid.get(&ekey(x, y)) else {
+                        continue;
+                    };
+                    let key = ekey(w, m);
+                    let mine = self
+                        .pending
+                        .get(&key)
+                        .is_some_and(|r| r[2] == w && ekey(r[0], r[1]) == ekey(x, y) && r[3] == m);
+                    if mine {
+                        self.finish_quaternary(key)?;
+                    }
+                }
             }
-            let (a, b) = self.longest(id);
-            let Some(m) = self.split_edge(a, b)? else {
-                return Ok(());
-            };
-            let [_, _, w] = self.rotated_any(id, a, b);
-            if self.modified {
-                self.finish_quaternary(ekey(w, m))?;
-            }
-        }
-        while let Some((&key, _)) = self.pending.iter().next() {
-            if self.stop.is_some() {
-                return Ok(());
-            }
-            self.finish_quaternary(key)?;
         }
         Ok(())
     }
@@ -538,6 +573,54 @@ impl Engine {
             target,
         }
     }
+}
+
+/// Splits one triangle by Definition 3.2 (or 2.1 when `plain`), without regard to its
+/// neighbours: the step that generates the family T(A, B, C) of Definition 3.3.
+fn split_alone(t: [Point; 3], plain: bool) -> Vec<[Point; 3]> {
+    let k = (0..3)
+        .max_by(|&i, &j| dist2(t[i], t[(i + 1) % 3]).total_cmp(&dist2(t[j], t[(j + 1) % 3])))
+        .unwrap_or(0);
+    let (x, y, w) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+    let mid = |p: Point, q: Point| [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0];
+    let m = mid(x, y);
+    if !plain && condition2_points(x, y, w, m) {
+        let (mx, my) = (mid(y, w), mid(w, x));
+        vec![[x, m, my], [m, y, mx], [my, mx, w], [m, mx, my]]
+    } else {
+        vec![[x, m, w], [m, y, w]]
+    }
+}
+
+/// Condition (2) on coordinates; see `Engine::condition2`.
+fn condition2_points(x: Point, y: Point, w: Point, m: Point) -> bool {
+    let bc = dist2(x, w).min(dist2(y, w));
+    let cc = dist2(w, m);
+    bc >= cc && cc >= dist2(x, y) / 4.0
+}
+
+/// The family T(A, B, C) of Definition 3.3 to depth `levels`, for every triangle of `initial`
+/// independently (no conformity): the set Theorem 3.4 speaks about. Returned as a triangle
+/// soup (three vertices per triangle) with, for every triangle, its initial triangle.
+pub fn family(initial: &TriMesh, levels: u32, plain: bool) -> (TriMesh, Vec<u32>) {
+    let mut soup = TriMesh::default();
+    let mut parents = Vec::new();
+    for t in 0..initial.triangles.len() {
+        let mut gen = vec![initial.corners(t)];
+        for _ in 0..levels {
+            gen = gen
+                .into_iter()
+                .flat_map(|x| split_alone(x, plain))
+                .collect();
+        }
+        for tri in gen {
+            let base = soup.vertices.len() as u32;
+            soup.vertices.extend(tri);
+            soup.triangles.push([base, base + 1, base + 2]);
+            parents.push(t as u32);
+        }
+    }
+    (soup, parents)
 }
 
 impl Lsb {

@@ -27,7 +27,7 @@
 //!   vertices are within a few ulps of ab (each constructed on the previous chain piece)
 //!   and advance monotonically from a to b.
 
-use std::collections::HashSet;
+use std::collections::{HashMap, HashSet};
 
 use spade::handles::FixedVertexHandle;
 use spade::{DelaunayTriangulation, Intersection, LineIntersectionIterator, Point2, Triangulation};
@@ -85,10 +85,15 @@ enum Splice {
     New(Point),
 }
 
+/// The growing vertex set. Vertices are numbered in the order they join `points`; spade
+/// numbers them in the order they were inserted, which differs after a shuffled bulk insertion.
 struct State {
     dt: DelaunayTriangulation<Point2<f64>>,
     points: Vec<Point>,
     chains: Vec<Vec<u32>>,
+    /// Our index -> spade's index, and back.
+    to_sp: Vec<u32>,
+    from_sp: Vec<u32>,
 }
 
 impl State {
@@ -103,13 +108,20 @@ impl State {
             return Ok(None);
         }
         let pos = self.dt.vertex(h).position();
+        let mine = self.points.len() as u32;
         self.points.push([pos.x, pos.y]);
-        Ok(Some(idx(h)))
+        self.to_sp.push(idx(h));
+        self.from_sp.push(mine);
+        Ok(Some(mine))
+    }
+
+    fn handle(&self, v: u32) -> FixedVertexHandle {
+        FixedVertexHandle::from_index(self.to_sp[v as usize] as usize)
     }
 
     fn is_edge(&self, a: u32, b: u32) -> bool {
         self.dt
-            .get_edge_from_neighbors(handle(a), handle(b))
+            .get_edge_from_neighbors(self.handle(a), self.handle(b))
             .is_some()
     }
 
@@ -118,7 +130,9 @@ impl State {
     fn crossings(&self, p: u32, q: u32) -> Vec<Splice> {
         let (pp, qp) = (self.points[p as usize], self.points[q as usize]);
         let mut out = Vec::new();
-        for hit in LineIntersectionIterator::new_from_handles(&self.dt, handle(p), handle(q)) {
+        for hit in
+            LineIntersectionIterator::new_from_handles(&self.dt, self.handle(p), self.handle(q))
+        {
             match hit {
                 Intersection::EdgeIntersection(e) => {
                     let [u, w] = e.vertices().map(|v| {
@@ -130,7 +144,7 @@ impl State {
                     }
                 }
                 Intersection::VertexIntersection(v) => {
-                    let v = idx(v.fix());
+                    let v = self.from_sp[idx(v.fix()) as usize];
                     if v != p && v != q {
                         out.push(Splice::Existing(v));
                     }
@@ -140,10 +154,6 @@ impl State {
         }
         out
     }
-}
-
-fn handle(v: u32) -> FixedVertexHandle {
-    FixedVertexHandle::from_index(v as usize)
 }
 
 /// The crossing of piece pq with edge uw, rounded to f64; `None` unless the exact signs say
@@ -185,6 +195,8 @@ impl Saalfeld {
             dt: DelaunayTriangulation::new(),
             points: Vec::with_capacity(dom.points.len()),
             chains: dom.segments.iter().map(|s| vec![s[0], s[1]]).collect(),
+            to_sp: Vec::with_capacity(dom.points.len()),
+            from_sp: Vec::with_capacity(dom.points.len()),
         };
         for &p in &dom.points {
             // `Pslg::check` refuses duplicates, so every input point becomes its own vertex.
@@ -358,28 +370,34 @@ impl Saalfeld {
                 "Sec. 5 construction needs {total} points, above the vertex limit of {cap}"
             )));
         }
+        // Placed points go in by one bulk load: inserted one by one, the points rounded just
+        // outside a hull edge each add a fan of slivers, which is quadratic.
         let before = st.points.len();
+        let mut at: HashMap<[u64; 2], u32> = st
+            .points
+            .iter()
+            .enumerate()
+            .map(|(i, p)| ([(p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits()], i as u32))
+            .collect();
+        let mut placed: Vec<Point> = st.points.clone();
         for (k, s) in dom.segments.iter().enumerate() {
             let (c1, c2) = circle[k];
             let n = pieces[k];
-            let mut chain = vec![s[0]];
             let mut targets = vec![c1];
             targets.extend((1..n).map(|j| {
                 let t = j as f64 / n as f64;
                 [c1[0] + t * (c2[0] - c1[0]), c1[1] + t * (c2[1] - c1[1])]
             }));
             targets.push(c2);
+            let mut chain = vec![s[0]];
             for p in targets {
-                let v = match st.insert(p)? {
-                    Some(v) => v,
-                    // Two segments meeting at a vertex at a zero angle cannot occur (the input
-                    // check refuses overlaps), but a rounded point may land on an old one.
-                    None => idx(st
-                        .dt
-                        .locate_vertex(to_spade(p))
-                        .map(|h| h.fix())
-                        .unwrap_or(handle(s[0]))),
-                };
+                let q = to_spade(p);
+                let key = [(q.x + 0.0).to_bits(), (q.y + 0.0).to_bits()];
+                // A rounded point may land on an existing one: the chain goes through it.
+                let v = *at.entry(key).or_insert_with(|| {
+                    placed.push([q.x, q.y]);
+                    (placed.len() - 1) as u32
+                });
                 if chain.last() != Some(&v) && v != s[1] {
                     chain.push(v);
                 }
@@ -387,6 +405,27 @@ impl Saalfeld {
             chain.push(s[1]);
             st.chains[k] = chain;
         }
+        // Inserted along each segment in order, each point with its predecessor as the hint,
+        // so that locating it is a short walk.
+        let mut hint: Option<FixedVertexHandle> = None;
+        for v in before as u32..placed.len() as u32 {
+            let p = to_spade(placed[v as usize]);
+            let h = match hint {
+                Some(hh) => st.dt.insert_with_hint(p, hh),
+                None => st.dt.insert(p),
+            }
+            .map_err(|e| insertion_error("saalfeld", e))?;
+            if idx(h) as usize != st.to_sp.len() {
+                return Err(crate::error::Error::mesher(
+                    "saalfeld",
+                    "spade merged two placed points",
+                ));
+            }
+            st.to_sp.push(idx(h));
+            st.from_sp.push(v);
+            hint = Some(h);
+        }
+        st.points = placed;
         Ok(Ok(st.points.len() - before))
     }
 
@@ -402,7 +441,10 @@ impl Saalfeld {
         stop: Option<String>,
         limits: &Limits,
     ) -> Result<ConformingRun> {
-        let triangles = spade_triangles(&st.dt);
+        let triangles: Vec<[u32; 3]> = spade_triangles(&st.dt)
+            .into_iter()
+            .map(|t| t.map(|v| st.from_sp[v as usize]))
+            .collect();
         let barriers: HashSet<(u32, u32)> = st
             .chains
             .iter()

@@ -4,12 +4,20 @@
 //!
 //! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
 
+pub mod cli;
+pub mod datasets;
 pub mod error;
 pub mod geom;
+pub mod io;
+pub mod isolate;
+pub mod maxangle;
 pub mod mesh;
 pub mod mesher;
+pub mod quality;
+pub mod reference;
 pub mod refine;
 pub mod registry;
+pub mod rhomb;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};

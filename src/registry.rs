@@ -7,6 +7,13 @@ use crate::mesher::Mesher;
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
     vec![
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::Cgal),
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::CgalConforming),
+        Box::new(crate::reference::TriangleMesher),
+        Box::new(crate::reference::SpadeMesher),
+        Box::new(crate::rhomb::Rhomb),
         Box::new(crate::refine::Saalfeld::default()),
         Box::new(crate::refine::Lsb::default()),
     ]

@@ -42,7 +42,7 @@ use crate::mesher::{MeshRun, Mesher, Params};
 
 /// Without a vertex budget, the constructive option refuses to place more points than this
 /// (its piece length can be arbitrarily small next to the input's size).
-const CONSTRUCTIVE_CAP: usize = 20_000_000;
+const CONSTRUCTIVE_CAP: usize = 2_000_000;
 
 /// The Saalfeld conforming Delaunay mesher. `constructive` selects the Sec. 5 construction
 /// instead of the Sec. 6 iteration; `max_rounds` bounds the Sec. 6 rounds.

@@ -51,3 +51,26 @@ fn lsb_meshes_pass_the_lsb_bounds_and_keep_half_the_initial_angle() {
         }
     }
 }
+
+#[test]
+fn bad_input_is_an_error_not_a_panic_or_an_empty_mesh() {
+    use hexmesh::Pslg;
+    let open = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.0], [2.0, 1.0]],
+        segments: vec![[0, 1], [1, 2]],
+        ..Pslg::default()
+    };
+    let missing = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+        segments: vec![[0, 1], [1, 7]],
+        ..Pslg::default()
+    };
+    let nan = Pslg::from_points(vec![[0.0, 0.0], [f64::NAN, 1.0]]);
+    let empty = Pslg::default();
+    for input in [open, missing, nan, empty] {
+        for m in [&Saalfeld::default() as &dyn Mesher, &Lsb::default()] {
+            let e = m.mesh(&input, &Params::default());
+            assert!(e.is_err(), "{} accepted {input:?}", m.name());
+        }
+    }
+}

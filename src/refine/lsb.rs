@@ -654,6 +654,7 @@ impl Lsb {
     /// The target `params` asks for: `max_area`, or else every edge below 1/20 of the
     /// diagonal of the domain's bounding box.
     pub fn target(input: &Pslg, params: &Params) -> Result<Target> {
+        input.validate_input()?;
         Ok(match params.max_area {
             Some(a) if a.is_finite() && a > 0.0 => Target::MaxArea(a),
             Some(a) => {
@@ -679,6 +680,7 @@ impl Lsb {
     /// or a point set in its bounding hexagon), without the triangles outside it or in holes.
     /// Returns the mesh and the domain's segments renumbered to its vertices.
     pub fn initial(input: &Pslg) -> Result<(TriMesh, Vec<[u32; 2]>)> {
+        input.validate_input()?;
         let dom = domain(input);
         let pts: Vec<Point2<f64>> = dom.points.iter().map(|&p| to_spade(p)).collect();
         let edges: Vec<[usize; 2]> = dom
@@ -708,6 +710,12 @@ impl Lsb {
         let barriers: HashSet<(u32, u32)> = dom.segments.iter().map(|s| ekey(s[0], s[1])).collect();
         let kept = carve(&vertices, &spade_triangles(&cdt), &barriers, &dom.holes);
         let (vertices, triangles, map) = compact(&vertices, &kept);
+        if triangles.is_empty() {
+            return Err(Error::mesher(
+                "lsb",
+                "the segments enclose no region to mesh",
+            ));
+        }
         let segments = dom
             .segments
             .iter()
@@ -725,6 +733,8 @@ impl Lsb {
     /// Meshes `input`: its initial triangulation refined adaptively to `Lsb::target`.
     pub fn refine(&self, input: &Pslg, params: &Params) -> Result<LsbRun> {
         let start = std::time::Instant::now();
+        // Before anything fits a hexagon to the points: NaN would never fit.
+        input.validate_input()?;
         let target = Lsb::target(input, params)?;
         let (initial, segments) = Lsb::initial(input)?;
         let mut budget = params.budget;

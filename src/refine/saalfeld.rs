@@ -190,6 +190,7 @@ impl Saalfeld {
     /// Meshes `input` and returns the mesh with its chains and point counts.
     pub fn refine(&self, input: &Pslg, params: &Params) -> Result<ConformingRun> {
         let limits = Limits::new(params.budget);
+        input.validate_input()?;
         let dom = domain(input);
         let mut st = State {
             dt: DelaunayTriangulation::new(),
@@ -457,6 +458,13 @@ impl Saalfeld {
             .iter()
             .map(|c| c.iter().filter_map(|&v| map[v as usize]).collect())
             .collect();
+        // A stopped run may leak the flood through a missing chain piece; it says so itself.
+        if vertices.is_empty() && complete {
+            return Err(crate::error::Error::mesher(
+                "saalfeld",
+                "the segments enclose no region to mesh",
+            ));
+        }
         let added = st.points.len() - n_input;
         Ok(ConformingRun {
             run: MeshRun {

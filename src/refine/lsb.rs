@@ -13,9 +13,10 @@
 //! applies the quaternary split lazily. A (2)-triangle is bisected first; when both of its
 //! children have been bisected (along AC and BC, their longest sides by Lemma 3.1), the edge
 //! CC' between them is flipped to A'B', which turns the four grandchildren into the four
-//! similar triangles of Definition 3.2. Uniform refinement applies Definition 3.2 itself:
-//! every (2)-triangle is split into four at once, and quaternary splits left half-done by
-//! propagation are finished before the level ends.
+//! similar triangles of Definition 3.2. Uniform refinement applies Definition 3.2 to every
+//! triangle alive at the start of a level; triangles that propagation bisects during the level
+//! are left to rule 4.1 (see `Engine::uniform_level` for why). Theorem 3.4 itself speaks of
+//! the family T(A, B, C) of one triangle, which is not conforming: `family` builds it.
 //!
 //! Midpoints are rounded to f64, so a bisected input segment is a chain of mesh edges whose
 //! inner vertices lie within rounding of the segment (see `saalfeld.rs` for the same choice).

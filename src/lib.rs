@@ -9,6 +9,7 @@ pub mod geom;
 pub mod mesh;
 pub mod mesher;
 pub mod registry;
+pub mod report;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};

@@ -21,7 +21,7 @@ use std::time::Duration;
 
 use crate::error::{Error, Result};
 
-pub use row::{Row, VOLATILE_COLUMNS};
+pub use row::{Row, COLUMNS, VOLATILE_COLUMNS};
 pub use table1::MaxAngleRow;
 
 /// The reference meshers: asked for [`REFERENCE_MIN_ANGLE`] in `results.csv` and put through

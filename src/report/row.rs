@@ -99,27 +99,66 @@ impl Row {
     }
 }
 
-/// Writes `rows` as CSV with a header line. Errors and settings strings may contain commas,
-/// quotes or newlines; the csv crate quotes them, which Python's csv module and pandas read.
-pub fn write_csv(path: &Path, rows: &[Row]) -> Result<()> {
-    let io = |e: std::io::Error| Error::Io {
-        path: path.to_path_buf(),
-        source: e,
-    };
-    let mut w = csv::Writer::from_path(path).map_err(|e| csv_error(path, e))?;
+/// The columns of `results.csv`, in order (the field names of [`Row`]).
+pub const COLUMNS: &[&str] = &[
+    "dataset",
+    "points",
+    "mesher",
+    "version",
+    "params",
+    "settings",
+    "complete",
+    "err",
+    "vertices",
+    "triangles",
+    "covered_area",
+    "min_angle",
+    "max_angle",
+    "radius_ratio_max",
+    "edge_ratio_max",
+    "shortest_edge",
+    "d_min",
+    "shortest_over_dmin",
+    "delaunay_exact_violations",
+    "delaunay_tol_violations",
+    "valid",
+    "bounds_ok",
+    "time_median_s",
+    "time_min_s",
+    "time_max_s",
+    "peak_rss_mb",
+    "runs",
+];
+
+/// Writes `rows` as CSV under the header `columns`, which is written even when there are no
+/// rows, so that an empty report still loads in pandas. Errors and settings strings may hold
+/// commas, quotes or newlines; the csv crate quotes them, which Python's csv module reads.
+pub fn write_csv<T: Serialize>(path: &Path, columns: &[&str], rows: &[T]) -> Result<()> {
+    let mut w = csv::WriterBuilder::new()
+        .has_headers(false)
+        .from_path(path)
+        .map_err(|e| csv_error(path, e))?;
+    w.write_record(columns).map_err(|e| csv_error(path, e))?;
     for row in rows {
         w.serialize(row).map_err(|e| csv_error(path, e))?;
     }
-    w.flush().map_err(io)
+    w.flush().map_err(|e| Error::Io {
+        path: path.to_path_buf(),
+        source: e,
+    })
 }
 
 fn csv_error(path: &Path, e: csv::Error) -> Error {
+    let message = e.to_string();
     match e.into_kind() {
         csv::ErrorKind::Io(source) => Error::Io {
             path: path.to_path_buf(),
             source,
         },
-        other => Error::parse(path, 0, format!("writing CSV: {other:?}")),
+        _ => Error::Io {
+            path: path.to_path_buf(),
+            source: std::io::Error::other(format!("writing CSV: {message}")),
+        },
     }
 }
 
@@ -158,7 +197,7 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("hexmesh-row-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("r.csv");
-        write_csv(&path, &[made_up_row()]).unwrap();
+        write_csv(&path, COLUMNS, &[made_up_row()]).unwrap();
         let text = std::fs::read_to_string(&path).unwrap();
         let header = text.lines().next().unwrap();
         assert!(header.starts_with("dataset,points,mesher,version,params,settings,complete,err,"));
@@ -170,13 +209,33 @@ mod tests {
     }
 
     #[test]
+    fn columns_are_the_serialized_field_names() {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.serialize(made_up_row()).unwrap();
+        let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+        assert_eq!(header, COLUMNS);
+    }
+
+    #[test]
+    fn an_empty_report_still_has_its_header() {
+        let dir = std::env::temp_dir().join(format!("hexmesh-row-e-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("r.csv");
+        write_csv::<Row>(&path, COLUMNS, &[]).unwrap();
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(text.trim_end(), COLUMNS.join(","));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
     fn errors_with_commas_and_newlines_stay_one_quoted_cell() {
         let dir = std::env::temp_dir().join(format!("hexmesh-row-q-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("r.csv");
         let mut r = made_up_row();
         r.err = "child died, signal 6\n\"abort\"".into();
-        write_csv(&path, &[r]).unwrap();
+        write_csv(&path, COLUMNS, &[r]).unwrap();
         let mut rd = csv::Reader::from_path(&path).unwrap();
         let rec = rd.records().next().unwrap().unwrap();
         assert_eq!(&rec[7], "child died, signal 6\n\"abort\"");

@@ -127,6 +127,19 @@ pub struct MaxAngleRow {
     pub err: String,
 }
 
+/// The columns of `maxangle.csv`, in order (the field names of [`MaxAngleRow`]).
+pub const MAX_ANGLE_COLUMNS: &[&str] = &[
+    "dataset",
+    "mesher",
+    "step",
+    "start",
+    "angle",
+    "triangles",
+    "time_s",
+    "next_failure",
+    "err",
+];
+
 /// Renders `table1.md`. `meshers` gives the column order; a mesher in `references` gets its
 /// cell from `max_angles`, any other from its `results.csv` row.
 pub fn render(
@@ -391,6 +404,26 @@ mod tests {
             md.contains("| fails at 20.00°: error \\| with pipe |"),
             "{md}"
         );
+    }
+
+    #[test]
+    fn max_angle_columns_are_the_serialized_field_names() {
+        let mut w = csv::Writer::from_writer(Vec::new());
+        w.serialize(MaxAngleRow {
+            dataset: "d".into(),
+            mesher: "m".into(),
+            step: 0.25,
+            start: 20.0,
+            angle: None,
+            triangles: None,
+            time_s: None,
+            next_failure: String::new(),
+            err: String::new(),
+        })
+        .unwrap();
+        let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
+        let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
+        assert_eq!(header, MAX_ANGLE_COLUMNS);
     }
 
     #[test]

@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use crate::error::{Error, Result};
+use crate::mesher::Params;
 
 pub use row::{Row, COLUMNS, VOLATILE_COLUMNS};
 pub use table1::MaxAngleRow;
@@ -31,6 +32,19 @@ pub const REFERENCES: &[&str] = &["cgal", "cgal-conforming", "triangle", "spade"
 
 /// The minimum angle the references are asked for in `results.csv` (degrees).
 pub const REFERENCE_MIN_ANGLE: f64 = 30.0;
+
+/// What a mesher is asked for in `results.csv` and the benches, and how a row spells it:
+/// a reference the [`REFERENCE_MIN_ANGLE`], any other mesher nothing (its bounds are fixed).
+pub fn case_params(mesher: &str) -> (Params, String) {
+    if REFERENCES.contains(&mesher) {
+        (
+            Params::default().with_min_angle(REFERENCE_MIN_ANGLE),
+            format!("min_angle={REFERENCE_MIN_ANGLE}"),
+        )
+    } else {
+        (Params::default(), "default".to_string())
+    }
+}
 
 /// What `hexmesh report` runs and where it writes.
 #[derive(Debug, Clone, PartialEq)]
@@ -109,6 +123,14 @@ pub fn clear_generated(dir: &Path) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn references_are_asked_for_30_degrees_and_ours_for_nothing() {
+        let (p, s) = case_params("triangle");
+        assert_eq!((p.min_angle, s.as_str()), (Some(30.0), "min_angle=30"));
+        let (p, s) = case_params("hex");
+        assert_eq!((p, s.as_str()), (Params::default(), "default"));
+    }
 
     #[test]
     fn only_generated_files_are_cleared() {

@@ -4,6 +4,7 @@
 //!
 //! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
 
+pub mod datasets;
 pub mod error;
 pub mod geom;
 pub mod mesh;

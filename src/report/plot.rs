@@ -214,9 +214,16 @@ fn legend_label(s: &AngleSeries) -> String {
     if s.bounds.is_empty() {
         s.mesher.clone()
     } else {
-        let b: Vec<String> = s.bounds.iter().map(|b| format!("{b:.4}°")).collect();
+        let b: Vec<String> = s.bounds.iter().map(|&b| short_degrees(b)).collect();
         format!("{} (bounds {})", s.mesher, b.join(", "))
     }
+}
+
+/// Degrees to at most four decimals, without trailing zeros: 30°, 43.8979°.
+fn short_degrees(b: f64) -> String {
+    let text = format!("{b:.4}");
+    let text = text.trim_end_matches('0').trim_end_matches('.');
+    format!("{text}°")
 }
 
 fn draw_scaling<DB: DrawingBackend>(
@@ -368,8 +375,8 @@ mod tests {
         ];
         let files = angle_plot(&dir, "angles-test", "angles of test", &series).unwrap();
         let svg = std::fs::read_to_string(&files[0]).unwrap();
-        assert!(svg.contains("hex (bounds 43.8979°, 90.0000°)"));
-        assert!(svg.contains("triangle (bounds 30.0000°)"));
+        assert!(svg.contains("hex (bounds 43.8979°, 90°)"));
+        assert!(svg.contains("triangle (bounds 30°)"));
         let png = std::fs::read(&files[1]).unwrap();
         assert_eq!(&png[1..4], b"PNG");
         if std::env::var_os("HEXMESH_KEEP_PLOTS").is_none() {

@@ -50,10 +50,18 @@ pub struct Row {
     pub delaunay_exact_violations: Option<u64>,
     /// Interior edges whose opposite angles sum to more than 180° + 1e-7°.
     pub delaunay_tol_violations: Option<u64>,
+    /// On a PSLG, the angles of the triangles that touch no segment, where the hexagon
+    /// bounds hold (paper Sec. 7); empty for point sets.
+    pub interior_min_angle: Option<f64>,
+    pub interior_max_angle: Option<f64>,
     /// Number of validity violations (0 = a valid mesh).
     pub valid: Option<u64>,
-    /// Every bound the mesher promises holds (DESIGN.md "Checks").
+    /// The verdict passed: the mesh is valid and every bound its mesher promises holds
+    /// (DESIGN.md "Checks"; on a PSLG the shape bounds are checked away from the segments).
     pub bounds_ok: Option<bool>,
+    /// The first thing the verdict found wrong: a validity violation, else a failed bound
+    /// with its value and limit; empty when it passed.
+    pub problem: String,
     pub time_median_s: Option<f64>,
     pub time_min_s: Option<f64>,
     pub time_max_s: Option<f64>,
@@ -88,8 +96,11 @@ impl Row {
             shortest_over_dmin: None,
             delaunay_exact_violations: None,
             delaunay_tol_violations: None,
+            interior_min_angle: None,
+            interior_max_angle: None,
             valid: None,
             bounds_ok: None,
+            problem: String::new(),
             time_median_s: None,
             time_min_s: None,
             time_max_s: None,
@@ -121,8 +132,11 @@ pub const COLUMNS: &[&str] = &[
     "shortest_over_dmin",
     "delaunay_exact_violations",
     "delaunay_tol_violations",
+    "interior_min_angle",
+    "interior_max_angle",
     "valid",
     "bounds_ok",
+    "problem",
     "time_median_s",
     "time_min_s",
     "time_max_s",

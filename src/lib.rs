@@ -7,6 +7,7 @@
 pub mod datasets;
 pub mod error;
 pub mod geom;
+pub mod io;
 pub mod mesh;
 pub mod mesher;
 pub mod registry;

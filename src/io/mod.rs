@@ -1,0 +1,454 @@
+//! File formats (DESIGN.md "Files and command line"): Triangle's `.node`/`.poly` in
+//! ([`read_input`]), Triangle's `.node`/`.ele` in and out ([`read_mesh`], [`write_mesh`]),
+//! VTK legacy and Gmsh 4.1 out for ParaView, Gmsh and meshio, and SVG pictures.
+//! The CLI and the harness use only the functions of this module; `triangle` keeps the
+//! file-level structs for bit-exact round trips.
+
+mod lines;
+pub mod msh;
+pub mod svg;
+pub mod triangle;
+pub mod vtk;
+
+use std::ffi::OsString;
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+
+use crate::error::{Error, InputError, Result};
+use crate::mesh::{Pslg, TriMesh};
+
+pub use msh::write_msh;
+pub use svg::{write_svg, SvgOptions};
+pub use triangle::{
+    parse_ele, parse_node, parse_poly, read_ele, read_node, read_poly, write_ele, write_node,
+    write_poly, EleFile, NodeFile, PolyFile, Region,
+};
+pub use vtk::write_vtk;
+
+/// An output format of [`write_mesh`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Format {
+    /// Triangle's PREFIX.node + PREFIX.ele, 1-based.
+    Triangle,
+    /// VTK legacy ASCII, PREFIX.vtk.
+    Vtk,
+    /// Gmsh 4.1 ASCII, PREFIX.msh.
+    Msh,
+    /// A picture coloured by smallest angle, PREFIX.svg.
+    Svg,
+}
+
+impl Format {
+    pub const ALL: [Format; 4] = [Format::Triangle, Format::Vtk, Format::Msh, Format::Svg];
+
+    /// Parses a command-line format name: "node" or "triangle", "vtk", "msh", "svg"
+    /// (case-insensitive).
+    pub fn parse(name: &str) -> Result<Format> {
+        match name.trim().to_ascii_lowercase().as_str() {
+            "node" | "triangle" | "ele" => Ok(Format::Triangle),
+            "vtk" => Ok(Format::Vtk),
+            "msh" | "gmsh" => Ok(Format::Msh),
+            "svg" => Ok(Format::Svg),
+            _ => Err(Error::Usage(format!(
+                "unknown output format '{name}'; known formats: node (or triangle), vtk, msh, svg"
+            ))),
+        }
+    }
+
+    /// The name [`Format::parse`] reads back.
+    pub fn name(self) -> &'static str {
+        match self {
+            Format::Triangle => "node",
+            Format::Vtk => "vtk",
+            Format::Msh => "msh",
+            Format::Svg => "svg",
+        }
+    }
+
+    /// The extensions of the files written for this format.
+    pub fn extensions(self) -> &'static [&'static str] {
+        match self {
+            Format::Triangle => &["node", "ele"],
+            Format::Vtk => &["vtk"],
+            Format::Msh => &["msh"],
+            Format::Svg => &["svg"],
+        }
+    }
+}
+
+impl FromStr for Format {
+    type Err = Error;
+    fn from_str(s: &str) -> Result<Format> {
+        Format::parse(s)
+    }
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Reads an input file, `.node` (points) or `.poly` (points, segments, holes; points from the
+/// sibling `.node` when its nodes section is empty), into a 0-based [`Pslg`] and checks it with
+/// [`Pslg::check`]. Problems name the file and the line of the offending point, segment or
+/// hole: malformed text is [`Error::Parse`], a well-formed but unusable input
+/// [`Error::Input`], except duplicate points, which are an [`Error::Parse`] naming both lines.
+/// A `# hexmesh: hexagon CX CY R` comment sets [`Pslg::hexagon`].
+pub fn read_input(path: &Path) -> Result<Pslg> {
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    let (nodes, node_path, poly) = match extension.as_deref() {
+        Some("node") => (read_node(path)?, path.to_path_buf(), None),
+        Some("poly") => {
+            let mut poly = read_poly(path)?;
+            if poly.nodes.points.is_empty() {
+                let node_path = path.with_extension("node");
+                let nodes = read_node(&node_path).map_err(|e| match e {
+                    Error::Io { source, .. } => Error::parse(
+                        path,
+                        0,
+                        format!(
+                            "the file lists no points, so they are read from {}, which failed: {source}",
+                            node_path.display()
+                        ),
+                    ),
+                    other => other,
+                })?;
+                let mut nodes = nodes;
+                // A hexagon directive may sit in either file.
+                nodes.hexagon = nodes.hexagon.or(poly.nodes.hexagon);
+                poly.nodes = NodeFile::default();
+                (nodes, node_path, Some(poly))
+            } else {
+                let nodes = std::mem::take(&mut poly.nodes);
+                (nodes, path.to_path_buf(), Some(poly))
+            }
+        }
+        _ => {
+            return Err(Error::parse(
+                path,
+                0,
+                "unknown input format: expected a Triangle .node (points) or .poly (PSLG) file",
+            ))
+        }
+    };
+    let source = Source {
+        node_path,
+        poly_path: path.to_path_buf(),
+        point_lines: nodes.lines,
+        segment_lines: poly
+            .as_ref()
+            .map(|p| p.segment_lines.clone())
+            .unwrap_or_default(),
+        hole_lines: poly
+            .as_ref()
+            .map(|p| p.hole_lines.clone())
+            .unwrap_or_default(),
+    };
+    let base = nodes.first_index;
+    let n = nodes.points.len();
+    let mut pslg = Pslg {
+        points: nodes.points,
+        hexagon: nodes.hexagon,
+        ..Pslg::default()
+    };
+    if let Some(poly) = poly {
+        pslg.segments.reserve(poly.segments.len());
+        for (k, s) in poly.segments.iter().enumerate() {
+            let mut zero_based = [0u32; 2];
+            for (slot, &v) in zero_based.iter_mut().zip(s) {
+                *slot = v
+                    .checked_sub(base)
+                    .filter(|&i| (i as usize) < n)
+                    .ok_or_else(|| {
+                        let range = match n {
+                            0 => "there are no points".to_string(),
+                            _ => format!(
+                                "the points are numbered {base} to {}",
+                                base as usize + n - 1
+                            ),
+                        };
+                        Error::parse(
+                            path,
+                            source.segment_line(k),
+                            format!(
+                                "segment {} names vertex {v}, but {range}",
+                                base as usize + k
+                            ),
+                        )
+                    })?;
+            }
+            pslg.segments.push(zero_based);
+        }
+        pslg.holes = poly.holes;
+    }
+    match pslg.check() {
+        Ok(()) => Ok(pslg),
+        Err(problem) => Err(source.locate(&pslg, base, problem)),
+    }
+}
+
+/// Where each item of an input came from, to put file and line on [`InputError`]s.
+struct Source {
+    node_path: PathBuf,
+    poly_path: PathBuf,
+    point_lines: Vec<usize>,
+    segment_lines: Vec<usize>,
+    hole_lines: Vec<usize>,
+}
+
+impl Source {
+    fn segment_line(&self, k: usize) -> usize {
+        self.segment_lines.get(k).copied().unwrap_or(0)
+    }
+
+    fn point_line(&self, k: usize) -> usize {
+        self.point_lines.get(k).copied().unwrap_or(0)
+    }
+
+    fn locate(&self, pslg: &Pslg, base: u32, problem: InputError) -> Error {
+        let at = |path: &Path, line: usize| Error::Input {
+            path: Some(path.to_path_buf()),
+            line: (line > 0).then_some(line),
+            problem: problem.clone(),
+        };
+        match problem {
+            InputError::Empty => Error::Input {
+                path: Some(self.node_path.clone()),
+                line: None,
+                problem,
+            },
+            InputError::NonFinite { index, .. } => at(&self.node_path, self.point_line(index)),
+            InputError::Duplicate {
+                first,
+                second,
+                point,
+            } => {
+                let base = base as usize;
+                Error::parse(
+                    &self.node_path,
+                    self.point_line(second),
+                    format!(
+                        "point {} duplicates point {} on line {}: both are at ({:?}, {:?})",
+                        second + base,
+                        first + base,
+                        self.point_line(first),
+                        point[0],
+                        point[1]
+                    ),
+                )
+            }
+            InputError::MissingVertex { segment, .. }
+            | InputError::DegenerateSegment { segment }
+            | InputError::PointOnSegment { segment, .. } => {
+                at(&self.poly_path, self.segment_line(segment))
+            }
+            // The later segment is where the conflict shows.
+            InputError::CrossingSegments { second, .. } => {
+                at(&self.poly_path, self.segment_line(second))
+            }
+            InputError::NonFiniteHole { index } => at(
+                &self.poly_path,
+                self.hole_lines.get(index).copied().unwrap_or(0),
+            ),
+            InputError::Range { .. } => {
+                let largest = (0..pslg.points.len()).max_by(|&a, &b| {
+                    let m = |i: usize| pslg.points[i][0].abs().max(pslg.points[i][1].abs());
+                    m(a).total_cmp(&m(b))
+                });
+                at(&self.node_path, largest.map_or(0, |k| self.point_line(k)))
+            }
+        }
+    }
+}
+
+/// `prefix` + "." + `extension`, keeping every dot already in the prefix ("box.1" → "box.1.node").
+fn with_suffix(prefix: &Path, extension: &str) -> PathBuf {
+    let mut name = OsString::from(prefix.as_os_str());
+    name.push(".");
+    name.push(extension);
+    PathBuf::from(name)
+}
+
+/// The prefix of a mesh path given with or without its `.node`/`.ele` extension.
+fn mesh_prefix(path: &Path) -> PathBuf {
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("node" | "ele") => path.with_extension(""),
+        _ => path.to_path_buf(),
+    }
+}
+
+/// Reads PREFIX.node and PREFIX.ele (the prefix may carry either extension) into a 0-based
+/// [`TriMesh`]. A corner naming a missing vertex is an [`Error::Parse`] at its `.ele` line;
+/// geometric defects (clockwise or degenerate triangles, duplicate vertices) are kept, so that
+/// `verify` can report them.
+pub fn read_mesh(prefix: &Path) -> Result<TriMesh> {
+    let prefix = mesh_prefix(prefix);
+    let node_path = with_suffix(&prefix, "node");
+    let ele_path = with_suffix(&prefix, "ele");
+    let nodes = read_node(&node_path)?;
+    let ele = read_ele(&ele_path)?;
+    let base = nodes.first_index;
+    let n = nodes.points.len();
+    let mut triangles = Vec::with_capacity(ele.triangles.len());
+    for (k, t) in ele.triangles.iter().enumerate() {
+        let mut zero_based = [0u32; 3];
+        for (slot, &v) in zero_based.iter_mut().zip(t) {
+            *slot = v
+                .checked_sub(base)
+                .filter(|&i| (i as usize) < n)
+                .ok_or_else(|| {
+                    Error::parse(
+                        &ele_path,
+                        ele.lines.get(k).copied().unwrap_or(0),
+                        format!(
+                            "triangle {} names vertex {v}, but {} has {n} points numbered from {base}",
+                            ele.first_index as usize + k,
+                            node_path.display()
+                        ),
+                    )
+                })?;
+        }
+        triangles.push(zero_based);
+    }
+    Ok(TriMesh {
+        vertices: nodes.points,
+        triangles,
+    })
+}
+
+/// Writes `mesh` in each of `formats` (each once) under `prefix`: PREFIX.node + PREFIX.ele
+/// (1-based, as Triangle writes them), PREFIX.vtk, PREFIX.msh, PREFIX.svg. Returns the files
+/// written, in order. A triangle naming a missing vertex or a non-finite vertex is refused
+/// before anything is written.
+pub fn write_mesh(prefix: &Path, mesh: &TriMesh, formats: &[Format]) -> Result<Vec<PathBuf>> {
+    check_mesh(prefix, mesh)?;
+    let mut done: Vec<Format> = Vec::new();
+    let mut written = Vec::new();
+    for &format in formats {
+        if done.contains(&format) {
+            continue;
+        }
+        done.push(format);
+        match format {
+            Format::Triangle => {
+                let node_path = with_suffix(prefix, "node");
+                let ele_path = with_suffix(prefix, "ele");
+                write_node(&node_path, &NodeFile::from_points(mesh.vertices.clone(), 1))?;
+                let ele = EleFile {
+                    triangles: mesh
+                        .triangles
+                        .iter()
+                        .map(|t| [t[0] + 1, t[1] + 1, t[2] + 1])
+                        .collect(),
+                    first_index: 1,
+                    ..EleFile::default()
+                };
+                write_ele(&ele_path, &ele)?;
+                written.push(node_path);
+                written.push(ele_path);
+            }
+            Format::Vtk => {
+                let path = with_suffix(prefix, "vtk");
+                write_vtk(&path, mesh)?;
+                written.push(path);
+            }
+            Format::Msh => {
+                let path = with_suffix(prefix, "msh");
+                write_msh(&path, mesh)?;
+                written.push(path);
+            }
+            Format::Svg => {
+                let path = with_suffix(prefix, "svg");
+                write_svg(&path, mesh, &SvgOptions::default())?;
+                written.push(path);
+            }
+        }
+    }
+    Ok(written)
+}
+
+/// The extension [`write_pslg`] expects for `pslg`: "poly" when it has segments or holes,
+/// "node" for a point set.
+pub fn pslg_extension(pslg: &Pslg) -> &'static str {
+    if pslg.segments.is_empty() && pslg.holes.is_empty() {
+        "node"
+    } else {
+        "poly"
+    }
+}
+
+/// Writes an input: a `.node` file for a point set, or a `.poly` file with its nodes inline;
+/// `path`'s extension must be the one [`pslg_extension`] gives (or `.poly` for a point set).
+/// Numbering is 1-based; a given bounding hexagon is kept as a `# hexmesh: hexagon` comment.
+pub fn write_pslg(path: &Path, pslg: &Pslg) -> Result<()> {
+    let n = pslg.points.len();
+    if let Some(s) = pslg
+        .segments
+        .iter()
+        .find(|s| s.iter().any(|&v| v as usize >= n))
+    {
+        return Err(triangle::invalid(
+            path,
+            format!("segment {s:?} names a vertex beyond the {n} points"),
+        ));
+    }
+    let nodes = NodeFile {
+        hexagon: pslg.hexagon,
+        ..NodeFile::from_points(pslg.points.clone(), 1)
+    };
+    match path.extension().and_then(|e| e.to_str()) {
+        Some("node") if pslg_extension(pslg) == "node" => write_node(path, &nodes),
+        Some("node") => Err(triangle::invalid(
+            path,
+            "the input has segments or holes, which a .node file cannot hold: write a .poly file",
+        )),
+        Some("poly") => {
+            let poly = PolyFile {
+                nodes,
+                segments: pslg.segments.iter().map(|s| [s[0] + 1, s[1] + 1]).collect(),
+                holes: pslg.holes.clone(),
+                ..PolyFile::default()
+            };
+            write_poly(path, &poly)
+        }
+        _ => Err(triangle::invalid(
+            path,
+            "an input is written as a .node or .poly file",
+        )),
+    }
+}
+
+/// Refuses a mesh that no format can represent: a corner naming a missing vertex, or a
+/// non-finite coordinate (our readers would refuse the file).
+pub(crate) fn check_mesh(path: &Path, mesh: &TriMesh) -> Result<()> {
+    let n = mesh.vertices.len();
+    if let Some((k, t)) = mesh
+        .triangles
+        .iter()
+        .enumerate()
+        .find(|(_, t)| t.iter().any(|&v| v as usize >= n))
+    {
+        return Err(triangle::invalid(
+            path,
+            format!("triangle {k} {t:?} names a vertex beyond the {n} vertices"),
+        ));
+    }
+    if let Some(k) = mesh
+        .vertices
+        .iter()
+        .position(|p| !p[0].is_finite() || !p[1].is_finite())
+    {
+        return Err(triangle::invalid(
+            path,
+            format!(
+                "vertex {k} has a non-finite coordinate {:?}",
+                mesh.vertices[k]
+            ),
+        ));
+    }
+    Ok(())
+}

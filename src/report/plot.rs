@@ -26,12 +26,7 @@ const FONT: &str = "sans-serif";
 pub fn ensure_font() -> Result<()> {
     static LOADED: OnceLock<std::result::Result<(), String>> = OnceLock::new();
     let outcome = LOADED.get_or_init(|| {
-        let bytes = std::fs::read(FONT_PATH).map_err(|e| {
-            format!(
-                "{FONT_PATH}: {e}; plots need the DejaVu Sans font: install Debian's \
-                 fonts-dejavu-core (`make fonts`)"
-            )
-        })?;
+        let bytes = read_font(Path::new(FONT_PATH)).map_err(|e| e.to_string())?;
         // plotters keeps a 'static reference; the font lives as long as the process anyway.
         let bytes: &'static [u8] = Box::leak(bytes.into_boxed_slice());
         register_font(FONT, FontStyle::Normal, bytes)
@@ -40,6 +35,20 @@ pub fn ensure_font() -> Result<()> {
     outcome
         .clone()
         .map_err(|message| Error::parse(PathBuf::from(FONT_PATH), 0, message))
+}
+
+/// The font file's bytes, or an error that says which package provides it.
+fn read_font(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| {
+        Error::parse(
+            path,
+            0,
+            format!(
+                "{e}; the plots need the DejaVu Sans font: install Debian's fonts-dejavu-core \
+                 (`make fonts`)"
+            ),
+        )
+    })
 }
 
 /// Colours by mesher name, the same in every plot of a report.
@@ -331,6 +340,14 @@ mod tests {
         let d = std::env::temp_dir().join(format!("hexmesh-plot-{tag}-{}", std::process::id()));
         std::fs::create_dir_all(&d).unwrap();
         d
+    }
+
+    #[test]
+    fn a_missing_font_names_the_package_to_install() {
+        let e = read_font(Path::new("/nonexistent/DejaVuSans.ttf")).unwrap_err();
+        let text = e.to_string();
+        assert!(text.starts_with("/nonexistent/DejaVuSans.ttf: "), "{text}");
+        assert!(text.contains("fonts-dejavu-core"), "{text}");
     }
 
     #[test]

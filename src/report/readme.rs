@@ -249,7 +249,7 @@ pub fn render(
     md.push_str(
         "In the manner of the paper's Fig. 15: each triangle is coloured by its smallest \
          angle; the zoomed pictures show where the detail is (the two close points, an end of \
-         the line).\n\n",
+         the line, the bowl of the R).\n\n",
     );
     for d in unique(art.pictures.iter().map(|p| p.dataset.as_str())) {
         let _ = writeln!(md, "### `{d}`\n");

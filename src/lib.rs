@@ -4,12 +4,15 @@
 //!
 //! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
 
+pub mod cli;
 pub mod datasets;
 pub mod error;
 pub mod geom;
 pub mod io;
 pub mod mesh;
 pub mod mesher;
+pub mod quality;
+pub mod reference;
 pub mod registry;
 pub mod report;
 

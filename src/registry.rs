@@ -6,7 +6,12 @@ use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![]
+    vec![
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::Cgal),
+        #[cfg(feature = "cgal")]
+        Box::new(crate::reference::cgal::CgalConforming),
+    ]
 }
 
 /// The names of the registered meshers, in report order.

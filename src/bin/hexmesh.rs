@@ -1,1 +1,5 @@
-fn main() {}
+//! The `hexmesh` command; everything lives in `hexmesh::cli`.
+
+fn main() -> std::process::ExitCode {
+    hexmesh::cli::main()
+}

@@ -1,0 +1,241 @@
+//! The `hexmesh` command line (DESIGN.md "Files and command line"). Exit codes: 0 when all is
+//! well, 1 when `verify` finds a failed check or a mesher stops short, 2 on bad input or usage.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::error::{Error, Result};
+use crate::mesh::Pslg;
+use crate::mesher::{Budget, Params};
+
+#[derive(Parser)]
+#[command(
+    name = "hexmesh",
+    version,
+    about = "Hexagonal Delaunay meshing with guaranteed quality, and a harness that checks and compares 2D meshers"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Write the paper's datasets as Triangle .node/.poly files.
+    Datasets {
+        /// Output directory.
+        #[arg(long, default_value = "datasets")]
+        out: PathBuf,
+        /// Also write the scaling series (plane-10k, plane-100k, plane-1m).
+        #[arg(long)]
+        scaling: bool,
+    },
+    /// List the registered meshers with their versions.
+    Meshers,
+    /// Mesh a .node/.poly file (or a dataset by name) with one mesher.
+    Mesh(MeshArgs),
+    /// Check a mesh (PREFIX.node + PREFIX.ele): validity, and with --bounds a mesher's promises.
+    Verify(VerifyArgs),
+}
+
+#[derive(Args)]
+struct MeshArgs {
+    /// A Triangle .node or .poly file, or the name of a dataset (see `hexmesh datasets`).
+    input: String,
+    /// The mesher (see `hexmesh meshers`).
+    #[arg(long)]
+    mesher: String,
+    /// Requested minimum angle in degrees (reference meshers; ours have fixed bounds).
+    #[arg(long)]
+    min_angle: Option<f64>,
+    /// Requested maximum triangle area.
+    #[arg(long)]
+    max_area: Option<f64>,
+    /// Output prefix: writes PREFIX.node and PREFIX.ele (and the other --format files).
+    #[arg(short = 'o', long = "out")]
+    prefix: PathBuf,
+    /// Output formats, comma-separated: node, vtk, msh, svg.
+    #[arg(long, value_delimiter = ',', default_value = "node")]
+    format: Vec<String>,
+    /// Budget: at most this many refinement steps.
+    #[arg(long)]
+    max_steps: Option<u64>,
+    /// Budget: at most this many output vertices.
+    #[arg(long)]
+    max_vertices: Option<usize>,
+    /// Budget: seconds; the mesher runs in a child process that is killed when time is up.
+    #[arg(long)]
+    timeout: Option<f64>,
+}
+
+#[derive(Args)]
+struct VerifyArgs {
+    /// The mesh: PREFIX.node and PREFIX.ele.
+    prefix: PathBuf,
+    /// The input the mesh was made from (.node/.poly or a dataset name): every input point must
+    /// be a vertex, and every segment a chain of edges where the bounds ask for conformity.
+    #[arg(long)]
+    input: Option<String>,
+    /// A mesher's name, `delaunay`, or `min-angle=DEG`. Without it, validity only.
+    #[arg(long)]
+    bounds: Option<String>,
+    /// Print the verdict as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+/// Runs the command line; `main` returns this.
+pub fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    match run(cli.command) {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("hexmesh: error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+fn run(command: Command) -> Result<ExitCode> {
+    match command {
+        Command::Datasets { out, scaling } => datasets(&out, scaling),
+        Command::Meshers => {
+            for m in crate::registry::meshers() {
+                println!("{:<16} {}", m.name(), m.version());
+            }
+            Ok(ExitCode::SUCCESS)
+        }
+        Command::Mesh(args) => mesh(&args),
+        Command::Verify(args) => verify(&args),
+    }
+}
+
+/// Reads INPUT: a file when it exists or has an extension, else a dataset name.
+fn load_input(input: &str) -> Result<Pslg> {
+    let path = Path::new(input);
+    if path.exists() || path.extension().is_some() {
+        crate::io::read_input(path)
+    } else {
+        crate::datasets::by_name(input)
+    }
+}
+
+fn datasets(out: &Path, scaling: bool) -> Result<ExitCode> {
+    std::fs::create_dir_all(out).map_err(|source| Error::Io {
+        path: out.to_path_buf(),
+        source,
+    })?;
+    let names = crate::datasets::SMALL.iter().chain(if scaling {
+        crate::datasets::SCALING
+    } else {
+        &[]
+    });
+    for name in names {
+        let pslg = crate::datasets::by_name(name)?;
+        let path = out.join(crate::datasets::file_name(name)?);
+        crate::io::write_pslg(&path, &pslg)?;
+        println!(
+            "{}: {} points, {} segments",
+            path.display(),
+            pslg.points.len(),
+            pslg.segments.len()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn mesh(args: &MeshArgs) -> Result<ExitCode> {
+    let input = load_input(&args.input)?;
+    input.validate_input()?;
+    let mesher = crate::registry::mesher(&args.mesher)?;
+    let formats = args
+        .format
+        .iter()
+        .map(|f| crate::io::Format::parse(f))
+        .collect::<Result<Vec<_>>>()?;
+    for (what, v) in [
+        ("--min-angle", args.min_angle),
+        ("--max-area", args.max_area),
+    ] {
+        if let Some(v) = v {
+            if !v.is_finite() || v <= 0.0 {
+                return Err(Error::Usage(format!(
+                    "{what} must be a positive number, not {v}"
+                )));
+            }
+        }
+    }
+    let timeout = match args.timeout {
+        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
+        Some(s) => {
+            return Err(Error::Usage(format!(
+                "--timeout must be positive seconds, not {s}"
+            )))
+        }
+        None => None,
+    };
+    let params = Params {
+        min_angle: args.min_angle,
+        max_area: args.max_area,
+        budget: Budget {
+            max_steps: args.max_steps,
+            max_vertices: args.max_vertices,
+            max_time: timeout,
+        },
+    };
+    let run = mesher.mesh(&input, &params)?;
+    if !run.complete {
+        eprintln!(
+            "hexmesh: mesher {} stopped early: {}; no mesh written",
+            mesher.name(),
+            run.stop_reason.as_deref().unwrap_or("budget exhausted")
+        );
+        return Ok(ExitCode::from(1));
+    }
+    let written = crate::io::write_mesh(&args.prefix, &run.mesh, &formats)?;
+    eprintln!(
+        "{}: {} vertices, {} triangles in {:.3} s ({})",
+        mesher.name(),
+        run.mesh.vertices.len(),
+        run.mesh.triangles.len(),
+        run.elapsed.as_secs_f64(),
+        mesher.settings(&params)
+    );
+    for path in written {
+        println!("{}", path.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn verify(args: &VerifyArgs) -> Result<ExitCode> {
+    let mesh = crate::io::read_mesh(&args.prefix)?;
+    let input = args.input.as_deref().map(load_input).transpose()?;
+    let bounds = args
+        .bounds
+        .as_deref()
+        .map(crate::quality::Bounds::parse)
+        .transpose()?;
+    let verdict = crate::quality::verdict(&mesh, input.as_ref(), bounds.as_ref());
+    if args.json {
+        let json = serde_json::to_string_pretty(&verdict)
+            .map_err(|e| Error::Usage(format!("cannot render the verdict as JSON: {e}")))?;
+        println!("{json}");
+    } else {
+        print!("{verdict}");
+    }
+    Ok(if verdict.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}

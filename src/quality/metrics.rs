@@ -1,0 +1,481 @@
+//! Quality figures of a triangle mesh (DESIGN.md "Checks"): angles and their histogram, the
+//! paper's "aspect ratio", which is Verdict's radius ratio R/(2r) (Sußner & Greiner 2009,
+//! Sec. 6.2: 1.20787 for the 43.9°/46.1°/90° triangle), edge ratio, shortest edge over d_min
+//! (Sec. 6.3), and the Delaunay property (Sec. 6.4) by the exact empty-circle test.
+//! `metrics_split` reports the figures near input segments and away from them apart, since on
+//! a PSLG the bounds hold only in the interior (Sec. 7).
+
+use serde::Serialize;
+
+use crate::geom::{dist, incircle, orient2d, Point};
+use crate::mesh::{Pslg, TriMesh};
+use crate::quality::closest_pair::closest_pair;
+use crate::quality::validate::topology;
+
+/// A figure and the triangle where it is reached.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Worst {
+    pub value: f64,
+    pub triangle: usize,
+}
+
+/// An interior edge that fails the exact empty-circle test.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct DelaunayEdge {
+    pub edge: [u32; 2],
+    /// The two triangles sharing the edge; the first traverses `edge` in its order.
+    pub triangles: [usize; 2],
+}
+
+/// Quality figures of a mesh. Angles are in degrees. Figures over an empty set are `None`.
+/// Triangles naming vertices that do not exist are left out (`validate` reports them).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Metrics {
+    /// Vertices of the mesh (for a part of a mesh: the vertices its triangles use).
+    pub vertices: usize,
+    pub triangles: usize,
+    pub min_angle: Option<Worst>,
+    pub max_angle: Option<Worst>,
+    /// Counts of all triangle angles in 1° bins: bin k holds angles in [k°, k+1°), 180° in
+    /// bin 179.
+    pub angle_histogram: Vec<u64>,
+    /// Verdict's radius ratio R/(2r): circumradius over incircle diameter, 1 for equilateral.
+    pub radius_ratio_max: Option<Worst>,
+    pub radius_ratio_mean: Option<f64>,
+    /// Longest over shortest edge of a triangle.
+    pub edge_ratio_max: Option<Worst>,
+    /// The shortest edge of the mesh; `triangle` is one triangle having it.
+    pub shortest_edge: Option<Worst>,
+    /// The smallest distance between two input points.
+    pub d_min: Option<f64>,
+    pub shortest_edge_over_d_min: Option<f64>,
+    /// Interior edges (shared by two triangles in opposite directions).
+    pub interior_edges: usize,
+    /// Interior edges whose opposite vertex lies strictly inside the other triangle's
+    /// circumcircle (exact incircle; cocircular is not a violation).
+    pub delaunay_violations: usize,
+    /// The first such edge, in edge order.
+    pub delaunay_first: Option<DelaunayEdge>,
+    /// Interior edges whose two opposite angles sum to more than 180° + 1e-7°: violations
+    /// that rounding of constructed vertices cannot explain.
+    pub delaunay_tolerance_violations: usize,
+    /// Sum of the signed triangle areas.
+    pub covered_area: f64,
+}
+
+/// Slack of the angle-sum form of the Delaunay test, in degrees (DESIGN.md "Checks").
+pub const DELAUNAY_ANGLE_SLACK_DEG: f64 = 1e-7;
+
+/// Angles (degrees), radius ratio, edge ratio and edge lengths of one triangle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TriangleShape {
+    /// Angle at each corner, in degrees.
+    pub angles: [f64; 3],
+    pub radius_ratio: f64,
+    pub edge_ratio: f64,
+    pub shortest_edge: f64,
+}
+
+/// The angle at `a` between rays to `b` and `c`, in degrees, from atan2 of the cross and dot
+/// products: accurate near 0° and 180°, where acos of a rounded cosine is not.
+pub fn angle_at(a: Point, b: Point, c: Point) -> f64 {
+    let u = [b[0] - a[0], b[1] - a[1]];
+    let v = [c[0] - a[0], c[1] - a[1]];
+    let cross = u[0] * v[1] - u[1] * v[0];
+    let dot = u[0] * v[0] + u[1] * v[1];
+    cross.abs().atan2(dot).to_degrees()
+}
+
+/// The shape figures of triangle (a, b, c). R/(2r) = abc·s / (8·A²) with s the semiperimeter
+/// (R = abc/(4A), r = A/s); infinite for a degenerate triangle.
+pub fn triangle_shape(p: [Point; 3]) -> TriangleShape {
+    let [a, b, c] = p;
+    let angles = [angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)];
+    // Edge k is opposite corner k.
+    let e = [dist(b, c), dist(c, a), dist(a, b)];
+    let shortest = e[0].min(e[1]).min(e[2]);
+    let longest = e[0].max(e[1]).max(e[2]);
+    let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs();
+    let s = 0.5 * (e[0] + e[1] + e[2]);
+    let radius_ratio = if area > 0.0 {
+        e[0] * e[1] * e[2] * s / (8.0 * area * area)
+    } else {
+        f64::INFINITY
+    };
+    TriangleShape {
+        angles,
+        radius_ratio,
+        edge_ratio: if shortest > 0.0 {
+            longest / shortest
+        } else {
+            f64::INFINITY
+        },
+        shortest_edge: shortest,
+    }
+}
+
+/// Quality figures of the whole mesh; `input` supplies d_min.
+pub fn metrics(mesh: &TriMesh, input: Option<&Pslg>) -> Metrics {
+    let all: Vec<usize> = (0..mesh.triangles.len()).collect();
+    let mut m = metrics_of(mesh, &all, input);
+    m.vertices = mesh.vertices.len();
+    m
+}
+
+fn keep_min(slot: &mut Option<Worst>, value: f64, triangle: usize) {
+    if !value.is_nan() && slot.is_none_or(|w| value < w.value) {
+        *slot = Some(Worst { value, triangle });
+    }
+}
+
+fn keep_max(slot: &mut Option<Worst>, value: f64, triangle: usize) {
+    if !value.is_nan() && slot.is_none_or(|w| value > w.value) {
+        *slot = Some(Worst { value, triangle });
+    }
+}
+
+/// Figures over the triangles `subset` (indices into the mesh, ascending). Interior edges
+/// count only when both their triangles are in the subset.
+fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics {
+    let n = mesh.vertices.len();
+    let in_range = |t: usize| mesh.triangles[t].iter().all(|&v| (v as usize) < n);
+    let mut member = vec![false; mesh.triangles.len()];
+    let mut used = vec![false; n];
+    let mut m = Metrics {
+        vertices: 0,
+        triangles: 0,
+        min_angle: None,
+        max_angle: None,
+        angle_histogram: vec![0; 180],
+        radius_ratio_max: None,
+        radius_ratio_mean: None,
+        edge_ratio_max: None,
+        shortest_edge: None,
+        d_min: None,
+        shortest_edge_over_d_min: None,
+        interior_edges: 0,
+        delaunay_violations: 0,
+        delaunay_first: None,
+        delaunay_tolerance_violations: 0,
+        covered_area: 0.0,
+    };
+    let mut ratio_sum = 0.0;
+    for &t in subset {
+        m.triangles += 1;
+        if !in_range(t) {
+            continue;
+        }
+        member[t] = true;
+        for &v in &mesh.triangles[t] {
+            used[v as usize] = true;
+        }
+        let p = mesh.corners(t);
+        let shape = triangle_shape(p);
+        for &a in &shape.angles {
+            keep_min(&mut m.min_angle, a, t);
+            keep_max(&mut m.max_angle, a, t);
+            if a.is_finite() {
+                m.angle_histogram[(a.floor().max(0.0) as usize).min(179)] += 1;
+            }
+        }
+        keep_max(&mut m.radius_ratio_max, shape.radius_ratio, t);
+        ratio_sum += shape.radius_ratio;
+        keep_max(&mut m.edge_ratio_max, shape.edge_ratio, t);
+        keep_min(&mut m.shortest_edge, shape.shortest_edge, t);
+        let [a, b, c] = p;
+        m.covered_area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+    }
+    m.vertices = used.iter().filter(|&&u| u).count();
+    let measured = member.iter().filter(|&&x| x).count();
+    if measured > 0 {
+        m.radius_ratio_mean = Some(ratio_sum / measured as f64);
+    }
+
+    let opposite = |t: usize, u: u32, v: u32| -> Option<u32> {
+        mesh.triangles[t]
+            .iter()
+            .copied()
+            .find(|&w| w != u && w != v)
+    };
+    for (u, v, t1, t2) in topology(mesh).interior {
+        if !member[t1] || !member[t2] {
+            continue;
+        }
+        m.interior_edges += 1;
+        let (Some(w1), Some(w2)) = (opposite(t1, u, v), opposite(t2, u, v)) else {
+            continue;
+        };
+        let p = |x: u32| mesh.vertices[x as usize];
+        // incircle wants a counter-clockwise triangle; a flipped one is validate's business,
+        // but the sign must still mean "inside".
+        let (pu, pv, p1, p2) = (p(u), p(v), p(w1), p(w2));
+        if [pu, pv, p1, p2]
+            .iter()
+            .any(|q| !q[0].is_finite() || !q[1].is_finite())
+        {
+            continue; // no circle to test; validate reports the coordinate
+        }
+        let o = orient2d(pu, pv, p1);
+        let inside = if o > 0.0 {
+            incircle(pu, pv, p1, p2) > 0.0
+        } else if o < 0.0 {
+            incircle(pv, pu, p1, p2) > 0.0
+        } else {
+            false
+        };
+        if inside {
+            m.delaunay_violations += 1;
+            if m.delaunay_first.is_none() {
+                m.delaunay_first = Some(DelaunayEdge {
+                    edge: [u, v],
+                    triangles: [t1, t2],
+                });
+            }
+        }
+        if angle_at(p1, pu, pv) + angle_at(p2, pu, pv) > 180.0 + DELAUNAY_ANGLE_SLACK_DEG {
+            m.delaunay_tolerance_violations += 1;
+        }
+    }
+
+    if let Some(input) = input {
+        m.d_min = closest_pair(&input.points).map(|c| c.distance);
+    }
+    if let (Some(d), Some(s)) = (m.d_min, m.shortest_edge) {
+        if d > 0.0 {
+            m.shortest_edge_over_d_min = Some(s.value / d);
+        }
+    }
+    m
+}
+
+/// Figures of the triangles near the input segments and of the rest, apart.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SplitMetrics {
+    /// The distance from a segment within which a triangle counts as near.
+    pub band: f64,
+    /// Triangles that touch a segment or come within `band` of one.
+    pub near: Metrics,
+    pub interior: Metrics,
+    /// Indices of the near triangles, ascending.
+    pub near_triangles: Vec<usize>,
+}
+
+/// Splits the mesh into triangles touching an input segment (sharing a point with it, decided
+/// exactly) or within distance `band` of one, and the rest, and gives the figures of each.
+/// Worst-triangle indices refer to the whole mesh. Without segments every triangle is interior.
+pub fn metrics_split(mesh: &TriMesh, input: &Pslg, band: f64) -> SplitMetrics {
+    let near_triangles = near_segment_triangles(mesh, input, band.max(0.0));
+    let mut is_near = vec![false; mesh.triangles.len()];
+    for &t in &near_triangles {
+        is_near[t] = true;
+    }
+    let rest: Vec<usize> = (0..mesh.triangles.len()).filter(|&t| !is_near[t]).collect();
+    SplitMetrics {
+        band,
+        near: metrics_of(mesh, &near_triangles, Some(input)),
+        interior: metrics_of(mesh, &rest, Some(input)),
+        near_triangles,
+    }
+}
+
+/// The triangles near a segment, found through a uniform grid of triangle bounding boxes so
+/// that each segment tests only the triangles around it.
+pub(crate) fn near_segment_triangles(mesh: &TriMesh, input: &Pslg, band: f64) -> Vec<usize> {
+    let n = mesh.vertices.len();
+    let segments: Vec<(Point, Point)> = input
+        .segments
+        .iter()
+        .filter_map(|s| {
+            Some((
+                *input.points.get(s[0] as usize)?,
+                *input.points.get(s[1] as usize)?,
+            ))
+        })
+        .collect();
+    let tris: Vec<usize> = (0..mesh.triangles.len())
+        .filter(|&t| {
+            mesh.triangles[t].iter().all(|&v| (v as usize) < n)
+                && mesh
+                    .corners(t)
+                    .iter()
+                    .all(|p| p[0].is_finite() && p[1].is_finite())
+        })
+        .collect();
+    if segments.is_empty() || tris.is_empty() {
+        return Vec::new();
+    }
+    let bbox = |ps: &[Point]| {
+        let mut lo = [f64::INFINITY; 2];
+        let mut hi = [f64::NEG_INFINITY; 2];
+        for p in ps {
+            for d in 0..2 {
+                lo[d] = lo[d].min(p[d]);
+                hi[d] = hi[d].max(p[d]);
+            }
+        }
+        (lo, hi)
+    };
+    let all: Vec<Point> = tris.iter().flat_map(|&t| mesh.corners(t)).collect();
+    let (lo, hi) = bbox(&all);
+    let side = (tris.len() as f64).sqrt().ceil().clamp(1.0, 512.0) as usize;
+    let cell = [
+        ((hi[0] - lo[0]) / side as f64).max(f64::MIN_POSITIVE),
+        ((hi[1] - lo[1]) / side as f64).max(f64::MIN_POSITIVE),
+    ];
+    let cell_of = |x: f64, d: usize| -> usize {
+        let k = ((x - lo[d]) / cell[d]).floor();
+        if k.is_nan() || k < 0.0 {
+            0
+        } else {
+            (k as usize).min(side - 1)
+        }
+    };
+    let mut grid: Vec<Vec<usize>> = vec![Vec::new(); side * side];
+    for &t in &tris {
+        let (a, b) = bbox(&mesh.corners(t));
+        for i in cell_of(a[0], 0)..=cell_of(b[0], 0) {
+            for j in cell_of(a[1], 1)..=cell_of(b[1], 1) {
+                grid[i * side + j].push(t);
+            }
+        }
+    }
+    let half_diagonal = 0.5 * cell[0].hypot(cell[1]);
+    let mut near = vec![false; mesh.triangles.len()];
+    for &(a, b) in &segments {
+        let (slo, shi) = bbox(&[a, b]);
+        for i in cell_of(slo[0] - band, 0)..=cell_of(shi[0] + band, 0) {
+            for j in cell_of(slo[1] - band, 1)..=cell_of(shi[1] + band, 1) {
+                // A triangle within `band` has a point in some cell it is filed under, and
+                // that cell's centre is within half a diagonal of the point: skip cells
+                // farther than that, so a long diagonal segment visits a strip, not its box.
+                let centre = [
+                    lo[0] + (i as f64 + 0.5) * cell[0],
+                    lo[1] + (j as f64 + 0.5) * cell[1],
+                ];
+                if point_segment(centre, a, b) > (half_diagonal + band) * (1.0 + 1e-6) {
+                    continue;
+                }
+                for &t in &grid[i * side + j] {
+                    if !near[t] && triangle_near_segment(mesh.corners(t), a, b, band) {
+                        near[t] = true;
+                    }
+                }
+            }
+        }
+    }
+    (0..mesh.triangles.len()).filter(|&t| near[t]).collect()
+}
+
+/// True when the closed triangle and the segment ab share a point (exact), or their distance
+/// is at most `band` (rounded arithmetic).
+fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
+    let on_segment = |q: Point, a: Point, b: Point| {
+        orient2d(a, b, q) == 0.0
+            && q[0] >= a[0].min(b[0])
+            && q[0] <= a[0].max(b[0])
+            && q[1] >= a[1].min(b[1])
+            && q[1] <= a[1].max(b[1])
+    };
+    let inside = |q: Point| {
+        let o = [
+            orient2d(p[0], p[1], q),
+            orient2d(p[1], p[2], q),
+            orient2d(p[2], p[0], q),
+        ];
+        o.iter().all(|&x| x >= 0.0) || o.iter().all(|&x| x <= 0.0)
+    };
+    let crosses = |c: Point, d: Point| {
+        let o1 = orient2d(a, b, c);
+        let o2 = orient2d(a, b, d);
+        let o3 = orient2d(c, d, a);
+        let o4 = orient2d(c, d, b);
+        let opposite = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
+        (opposite(o1, o2) && opposite(o3, o4))
+            || on_segment(c, a, b)
+            || on_segment(d, a, b)
+            || on_segment(a, c, d)
+            || on_segment(b, c, d)
+    };
+    if inside(a) || inside(b) || (0..3).any(|k| crosses(p[k], p[(k + 1) % 3])) {
+        return true;
+    }
+    if band <= 0.0 {
+        return false;
+    }
+    let d = (0..3)
+        .map(|k| {
+            point_segment(p[k], a, b)
+                .min(point_segment(a, p[k], p[(k + 1) % 3]))
+                .min(point_segment(b, p[k], p[(k + 1) % 3]))
+        })
+        .fold(f64::INFINITY, f64::min);
+    d <= band
+}
+
+/// Distance from `q` to the segment ab (rounded arithmetic).
+fn point_segment(q: Point, a: Point, b: Point) -> f64 {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if l2 > 0.0 {
+        (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A k×k grid of unit squares, each split into two triangles.
+    fn grid_mesh(k: u32) -> TriMesh {
+        let vertices = (0..=k)
+            .flat_map(|j| (0..=k).map(move |i| [i as f64, j as f64]))
+            .collect();
+        let id = |i: u32, j: u32| j * (k + 1) + i;
+        let triangles = (0..k)
+            .flat_map(|j| {
+                (0..k).flat_map(move |i| {
+                    [
+                        [id(i, j), id(i + 1, j), id(i + 1, j + 1)],
+                        [id(i, j), id(i + 1, j + 1), id(i, j + 1)],
+                    ]
+                })
+            })
+            .collect();
+        TriMesh {
+            vertices,
+            triangles,
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        #[test]
+        fn the_grid_search_finds_exactly_the_near_triangles(
+            k in 1u32..25,
+            segs in prop::collection::vec(((-2.0..27.0f64, -2.0..27.0f64), (-2.0..27.0f64, -2.0..27.0f64)), 1..4),
+            band in prop::sample::select(vec![0.0, 0.3, 1.0, 4.0]),
+        ) {
+            let mesh = grid_mesh(k);
+            let mut input = Pslg::default();
+            for ((ax, ay), (bx, by)) in segs {
+                let n = input.points.len() as u32;
+                input.points.extend([[ax, ay], [bx, by]]);
+                input.segments.push([n, n + 1]);
+            }
+            let brute: Vec<usize> = (0..mesh.triangles.len())
+                .filter(|&t| {
+                    input.segments.iter().any(|s| {
+                        let (a, b) = (input.points[s[0] as usize], input.points[s[1] as usize]);
+                        triangle_near_segment(mesh.corners(t), a, b, band)
+                    })
+                })
+                .collect();
+            prop_assert_eq!(near_segment_triangles(&mesh, &input, band), brute);
+        }
+    }
+}

@@ -1,0 +1,25 @@
+//! Checks and figures for triangle meshes (DESIGN.md "Checks"): is the mesh valid, how good
+//! are its triangles, and does it keep what its mesher promises.
+
+/// The bounds each mesher promises, by name.
+pub mod bounds;
+/// d_min, the closest pair of input points, in O(n log n).
+pub mod closest_pair;
+/// Angles, radius ratio, edge ratio, shortest edge / d_min, Delaunay counts.
+pub mod metrics;
+/// Every structural invariant a mesh must meet, each broken one named.
+pub mod validate;
+/// Validity plus bounds, as a table and as JSON.
+pub mod verdict;
+
+pub use bounds::{
+    Bounds, ANGLE_SLACK_DEG, BOUND_NAMES, HEX_MAX_RADIUS_RATIO, HEX_MIN_ANGLE_DEG,
+    HEX_MIN_EDGE_OVER_DMIN,
+};
+pub use closest_pair::{closest_pair, ClosestPair};
+pub use metrics::{
+    angle_at, metrics, metrics_split, triangle_shape, DelaunayEdge, Metrics, SplitMetrics,
+    TriangleShape, Worst, DELAUNAY_ANGLE_SLACK_DEG,
+};
+pub use validate::{validate, ValidateOptions, Violation};
+pub use verdict::{verdict, Check, Status, Verdict, WorstTriangle};

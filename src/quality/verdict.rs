@@ -1,0 +1,291 @@
+//! The verdict on one mesh: validity plus every bound of a `Bounds`, each with its value, its
+//! limit and, when it fails, the worst triangle — what `hexmesh verify` prints as a table and,
+//! with `--json`, as serde JSON (DESIGN.md "Checks", "Files and command line").
+
+use std::fmt;
+
+use serde::Serialize;
+
+use crate::geom::Point;
+use crate::mesh::{Pslg, TriMesh};
+use crate::quality::bounds::{Bounds, ANGLE_SLACK_DEG};
+use crate::quality::metrics::{metrics, metrics_split, Metrics, SplitMetrics, Worst};
+use crate::quality::validate::{validate, ValidateOptions, Violation};
+
+/// The outcome of one check.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Status {
+    Ok,
+    Fail,
+    /// The check needs something that is missing (e.g. the input, for d_min).
+    Skipped,
+}
+
+/// A triangle named in a failed check, with its corners.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WorstTriangle {
+    pub triangle: usize,
+    pub corners: [Point; 3],
+    /// The figure at that triangle (angle, ratio, ...).
+    pub value: f64,
+}
+
+/// One row of the verdict table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Check {
+    /// What was checked, with its unit.
+    pub what: String,
+    pub value: Option<f64>,
+    /// "≥", "≤" or "=".
+    pub relation: String,
+    pub limit: f64,
+    pub status: Status,
+    /// For a failed bound: the triangle where it fails worst.
+    pub worst: Option<WorstTriangle>,
+    /// Why a check was skipped, or which part of the mesh it covers.
+    pub note: Option<String>,
+}
+
+/// Validity, bounds and figures of one mesh.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verdict {
+    /// The name of the bounds checked, if any.
+    pub bounds: Option<String>,
+    pub options: ValidateOptions,
+    pub violations: Vec<Violation>,
+    pub checks: Vec<Check>,
+    pub metrics: Metrics,
+    /// Near-segment and interior figures apart, for inputs with segments.
+    pub split: Option<SplitMetrics>,
+}
+
+impl Verdict {
+    /// True when the mesh is valid and no bound fails (skipped checks do not fail).
+    pub fn passed(&self) -> bool {
+        self.violations.is_empty() && self.checks.iter().all(|c| c.status != Status::Fail)
+    }
+}
+
+/// Validates `mesh` and checks it against `bounds`. Without bounds, only validity (with
+/// conformity and the one-disc rule off) is decided and the figures are reported.
+pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) -> Verdict {
+    let has_segments = input.is_some_and(|i| i.has_segments());
+    let options = ValidateOptions {
+        // The mesh of a point set is one disc, whatever the bounds: a second boundary loop is a
+        // hole the mesher had no business making.
+        single_component: !has_segments
+            && (input.is_some() || bounds.is_some_and(|b| b.single_component)),
+        conforming: bounds.is_some_and(|b| b.conforming),
+    };
+    let violations = validate(mesh, input, &options);
+    let all = metrics(mesh, input);
+    let split = input
+        .filter(|i| i.has_segments())
+        .map(|i| metrics_split(mesh, i, 0.0));
+
+    let mut checks = vec![Check {
+        what: "validity violations".to_string(),
+        value: Some(violations.len() as f64),
+        relation: "=".to_string(),
+        limit: 0.0,
+        status: if violations.is_empty() {
+            Status::Ok
+        } else {
+            Status::Fail
+        },
+        worst: None,
+        note: None,
+    }];
+    if let Some(b) = bounds {
+        let interior_only = b.interior_only_on_segments && split.is_some();
+        let (m, note) = match (&split, interior_only) {
+            (Some(s), true) => (&s.interior, Some("away from segments".to_string())),
+            _ => (&all, None),
+        };
+        let worst = |w: Option<Worst>| {
+            w.map(|w| WorstTriangle {
+                triangle: w.triangle,
+                corners: mesh.corners(w.triangle),
+                value: w.value,
+            })
+        };
+        let mut bound = |what: &str, w: Option<Worst>, ge: bool, limit: f64, slack: f64| {
+            let value = w.map(|w| w.value);
+            let ok = value.is_none_or(|v| {
+                if ge {
+                    v >= limit - slack
+                } else {
+                    v <= limit + slack
+                }
+            });
+            checks.push(Check {
+                what: what.to_string(),
+                value,
+                relation: if ge { "≥" } else { "≤" }.to_string(),
+                limit,
+                status: if ok { Status::Ok } else { Status::Fail },
+                worst: if ok { None } else { worst(w) },
+                note: note.clone(),
+            });
+        };
+        if let Some(limit) = b.min_angle {
+            bound("min angle (deg)", m.min_angle, true, limit, ANGLE_SLACK_DEG);
+        }
+        if let Some(limit) = b.max_angle {
+            bound(
+                "max angle (deg)",
+                m.max_angle,
+                false,
+                limit,
+                ANGLE_SLACK_DEG,
+            );
+        }
+        if let Some(limit) = b.max_radius_ratio {
+            bound("radius ratio R/(2r)", m.radius_ratio_max, false, limit, 0.0);
+        }
+        if let Some(limit) = b.min_edge_over_dmin {
+            let ratio = match (m.shortest_edge, m.d_min) {
+                (Some(s), Some(d)) if d > 0.0 => Some(Worst {
+                    value: s.value / d,
+                    triangle: s.triangle,
+                }),
+                _ => None,
+            };
+            if ratio.is_some() || m.shortest_edge.is_none() {
+                bound("shortest edge / d_min", ratio, true, limit, 0.0);
+            } else {
+                checks.push(Check {
+                    what: "shortest edge / d_min".to_string(),
+                    value: None,
+                    relation: "≥".to_string(),
+                    limit,
+                    status: Status::Skipped,
+                    worst: None,
+                    note: Some("needs the input points (two or more)".to_string()),
+                });
+            }
+        }
+        if b.delaunay {
+            let count = m.delaunay_violations;
+            let failed = count > 0;
+            checks.push(Check {
+                what: "non-Delaunay edges (exact)".to_string(),
+                value: Some(count as f64),
+                relation: "=".to_string(),
+                limit: 0.0,
+                status: if failed { Status::Fail } else { Status::Ok },
+                worst: m.delaunay_first.filter(|_| failed).map(|e| WorstTriangle {
+                    triangle: e.triangles[0],
+                    corners: mesh.corners(e.triangles[0]),
+                    value: count as f64,
+                }),
+                note: note.clone(),
+            });
+        }
+    }
+    Verdict {
+        bounds: bounds.map(|b| b.name.clone()),
+        options,
+        violations,
+        checks,
+        metrics: all,
+        split,
+    }
+}
+
+fn number(v: Option<f64>) -> String {
+    match v {
+        None => "-".to_string(),
+        Some(v) if v.fract() == 0.0 && v.abs() < 1e15 => format!("{v:.0}"),
+        Some(v) => format!("{v:.7}"),
+    }
+}
+
+fn point(p: Point) -> String {
+    format!("({}, {})", p[0], p[1])
+}
+
+impl fmt::Display for Verdict {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let m = &self.metrics;
+        writeln!(
+            f,
+            "bounds: {}   ({} vertices, {} triangles, covered area {})",
+            self.bounds.as_deref().unwrap_or("none (validity only)"),
+            m.vertices,
+            m.triangles,
+            m.covered_area
+        )?;
+        let label = |c: &Check| match &c.note {
+            Some(n) if c.status != Status::Skipped => format!("{} [{n}]", c.what),
+            _ => c.what.clone(),
+        };
+        let width = self
+            .checks
+            .iter()
+            .map(|c| label(c).chars().count())
+            .max()
+            .unwrap_or(0)
+            .max(5);
+        writeln!(
+            f,
+            "{:<width$} {:>14} {:>16}  result",
+            "check", "value", "limit"
+        )?;
+        for c in &self.checks {
+            let what = label(c);
+            let result = match c.status {
+                Status::Ok => "ok".to_string(),
+                Status::Fail => "FAIL".to_string(),
+                Status::Skipped => format!("skipped: {}", c.note.as_deref().unwrap_or("")),
+            };
+            writeln!(
+                f,
+                "{:<width$} {:>14} {:>16}  {result}",
+                what,
+                number(c.value),
+                format!("{} {}", c.relation, number(Some(c.limit)))
+            )?;
+        }
+        writeln!(
+            f,
+            "angle checks allow {ANGLE_SLACK_DEG}° for rounding; radius ratio is Verdict's R/(2r)"
+        )?;
+        for c in self.checks.iter().filter(|c| c.status == Status::Fail) {
+            if let Some(w) = &c.worst {
+                writeln!(
+                    f,
+                    "FAIL {}: worst triangle {} {} {} {}: {} {} {} fails",
+                    c.what,
+                    w.triangle,
+                    point(w.corners[0]),
+                    point(w.corners[1]),
+                    point(w.corners[2]),
+                    number(Some(w.value)),
+                    c.relation,
+                    number(Some(c.limit))
+                )?;
+            }
+        }
+        if !self.violations.is_empty() {
+            writeln!(f, "validity violations ({}):", self.violations.len())?;
+            for v in &self.violations {
+                writeln!(f, "  {v}")?;
+            }
+        }
+        if let Some(s) = &self.split {
+            for (part, pm) in [("near segments", &s.near), ("interior", &s.interior)] {
+                writeln!(
+                    f,
+                    "{part}: {} triangles, angles {}–{} deg, radius ratio max {}",
+                    pm.triangles,
+                    number(pm.min_angle.map(|w| w.value)),
+                    number(pm.max_angle.map(|w| w.value)),
+                    number(pm.radius_ratio_max.map(|w| w.value))
+                )?;
+            }
+        }
+        writeln!(f, "{}", if self.passed() { "PASSED" } else { "FAILED" })
+    }
+}

@@ -1,0 +1,149 @@
+//! `hexmesh verify` on the hand-made broken meshes of tests/fixtures/broken: each defect is
+//! caught (exit 1, named in the output), the good meshes pass (exit 0), bad input exits 2.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn hexmesh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hexmesh"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("hexmesh runs")
+}
+
+fn fixture(name: &str) -> String {
+    format!("tests/fixtures/broken/{name}")
+}
+
+/// Runs verify and returns (exit code, stdout + stderr).
+fn verify(name: &str, extra: &[&str]) -> (i32, String) {
+    let f = fixture(name);
+    let mut args = vec!["verify", f.as_str()];
+    args.extend_from_slice(extra);
+    let out = hexmesh(&args);
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    assert!(!text.contains("panicked"), "{name}: {text}");
+    (out.status.code().expect("exit code"), text)
+}
+
+fn assert_caught(name: &str, extra: &[&str], needle: &str) {
+    let (code, text) = verify(name, extra);
+    assert_eq!(code, 1, "{name} should fail verify:\n{text}");
+    assert!(
+        text.contains(needle),
+        "{name}: expected '{needle}' in:\n{text}"
+    );
+}
+
+#[test]
+fn a_clockwise_triangle_is_caught() {
+    assert_caught("clockwise_triangle", &[], "clockwise");
+}
+
+#[test]
+fn a_zero_area_triangle_is_caught() {
+    assert_caught("zero_area_triangle", &[], "zero area");
+}
+
+#[test]
+fn an_edge_used_three_times_is_caught() {
+    assert_caught("edge_used_three_times", &[], "3 triangles");
+}
+
+#[test]
+fn overlapping_triangles_are_caught() {
+    assert_caught("overlapping_triangles", &[], "FAILED");
+}
+
+#[test]
+fn a_hole_in_the_mesh_of_a_point_set_is_caught() {
+    let input = fixture("hole_in_point_set_mesh.node");
+    assert_caught(
+        "hole_in_point_set_mesh",
+        &["--input", &input],
+        "hole in the mesh",
+    );
+}
+
+#[test]
+fn a_duplicate_vertex_is_caught() {
+    assert_caught("duplicate_vertex", &[], "duplicate");
+}
+
+#[test]
+fn a_missing_input_point_is_caught() {
+    let input = fixture("missing_input_point_input.node");
+    assert_caught(
+        "missing_input_point",
+        &["--input", &input],
+        "is not a mesh vertex",
+    );
+}
+
+#[test]
+fn a_non_delaunay_edge_is_caught() {
+    assert_caught(
+        "non_delaunay_edge",
+        &["--bounds", "delaunay"],
+        "non-Delaunay edges (exact)",
+    );
+}
+
+#[test]
+fn a_cocircular_square_passes_delaunay_split_either_way() {
+    for name in [
+        "cocircular_square_either_diagonal_a",
+        "cocircular_square_either_diagonal_b",
+    ] {
+        let (code, text) = verify(name, &["--bounds", "delaunay"]);
+        assert_eq!(code, 0, "{name}:\n{text}");
+    }
+}
+
+#[test]
+fn an_angle_of_43_8978_degrees_fails_the_hex_bounds() {
+    assert_caught("angle_43_8978", &["--bounds", "hex"], "min angle");
+}
+
+#[test]
+fn an_angle_of_exactly_90_degrees_passes_the_hex_bounds() {
+    let (code, text) = verify("right_angle_exactly_90", &["--bounds", "hex"]);
+    assert_eq!(code, 0, "{text}");
+}
+
+#[test]
+fn json_output_parses_and_says_whether_it_passed() {
+    let (code, text) = verify("non_delaunay_edge", &["--bounds", "delaunay", "--json"]);
+    assert_eq!(code, 1);
+    let v: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+    assert!(v["checks"].as_array().is_some_and(|c| !c.is_empty()));
+}
+
+#[test]
+fn verify_of_a_missing_mesh_or_unknown_bounds_exits_2_naming_the_problem() {
+    let out = hexmesh(&["verify", "tests/fixtures/broken/no_such_mesh"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no_such_mesh"), "{err}");
+    let out = hexmesh(&[
+        "verify",
+        &fixture("right_angle_exactly_90"),
+        "--bounds",
+        "sharpest",
+    ]);
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("sharpest"));
+}
+
+#[test]
+fn every_fixture_has_its_node_file() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/broken");
+    for entry in std::fs::read_dir(&dir).expect("fixture dir") {
+        let path = entry.expect("entry").path();
+        if path.extension().is_some_and(|e| e == "ele") {
+            assert!(path.with_extension("node").exists(), "{}", path.display());
+        }
+    }
+}

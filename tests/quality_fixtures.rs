@@ -1,0 +1,280 @@
+//! The hand-written broken meshes of tests/fixtures/broken: each is caught with the right
+//! violation or failed bound, and the two borderline good ones pass.
+
+use std::path::PathBuf;
+
+use hexmesh::quality::{
+    validate, verdict, Bounds, Status, ValidateOptions, Violation, HEX_MIN_ANGLE_DEG,
+};
+use hexmesh::{Pslg, TriMesh};
+
+/// Rows of a Triangle file without comments and blank lines, split into words.
+fn rows(path: &PathBuf) -> Vec<Vec<String>> {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .map(|l| l.split('#').next().unwrap_or(""))
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| l.split_whitespace().map(str::to_string).collect())
+        .collect()
+}
+
+fn fixture(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/broken")
+        .join(name)
+}
+
+/// Test-only reader of a 1-based .node file (the io module owns the real one).
+fn read_node(name: &str) -> Vec<[f64; 2]> {
+    let r = rows(&fixture(name));
+    let count: usize = r[0][0].parse().expect("vertex count");
+    r[1..=count]
+        .iter()
+        .map(|w| [w[1].parse().expect("x"), w[2].parse().expect("y")])
+        .collect()
+}
+
+fn read_mesh(prefix: &str) -> TriMesh {
+    let r = rows(&fixture(&format!("{prefix}.ele")));
+    let count: usize = r[0][0].parse().expect("triangle count");
+    let triangles = r[1..=count]
+        .iter()
+        .map(|w| {
+            let v = |k: usize| w[k].parse::<u32>().expect("vertex index") - 1;
+            [v(1), v(2), v(3)]
+        })
+        .collect();
+    TriMesh {
+        vertices: read_node(&format!("{prefix}.node")),
+        triangles,
+    }
+}
+
+fn plain(mesh: &TriMesh) -> Vec<Violation> {
+    validate(mesh, None, &ValidateOptions::default())
+}
+
+#[test]
+fn clockwise_triangle_is_reported_as_clockwise() {
+    let v = plain(&read_mesh("clockwise_triangle"));
+    assert!(
+        v.iter().any(|x| matches!(
+            x,
+            Violation::Clockwise {
+                triangle: 1,
+                corners: [0, 3, 2],
+                ..
+            }
+        )),
+        "{v:#?}"
+    );
+    assert!(!v.iter().any(|x| matches!(x, Violation::ZeroArea { .. })));
+}
+
+#[test]
+fn zero_area_triangle_is_reported_as_zero_area_and_nothing_else() {
+    let v = plain(&read_mesh("zero_area_triangle"));
+    assert_eq!(v.len(), 1, "{v:#?}");
+    assert!(
+        matches!(v[0], Violation::ZeroArea { triangle: 2, .. }),
+        "{v:#?}"
+    );
+}
+
+#[test]
+fn edge_used_three_times_names_the_edge_and_its_triangles() {
+    let v = plain(&read_mesh("edge_used_three_times"));
+    assert!(
+        v.iter().any(|x| matches!(
+            x,
+            Violation::EdgeOverused { edge: [0, 1], triangles, .. } if triangles == &vec![0, 1, 2]
+        )),
+        "{v:#?}"
+    );
+}
+
+#[test]
+fn overlapping_triangles_fold_is_found_at_the_interior_vertex() {
+    let mesh = read_mesh("overlapping_triangles");
+    let v = plain(&mesh);
+    assert!(
+        v.iter().any(|x| matches!(
+            x,
+            Violation::Fold {
+                vertex: 0,
+                winding: 2,
+                ..
+            }
+        )),
+        "{v:#?}"
+    );
+    // Every triangle is counter-clockwise: the fold is not a flipped triangle.
+    assert!(!v.iter().any(|x| matches!(x, Violation::Clockwise { .. })));
+    assert!(v
+        .iter()
+        .any(|x| matches!(x, Violation::BoundaryCrossing { .. })));
+}
+
+#[test]
+fn hole_in_point_set_mesh_breaks_the_one_disc_rule_only() {
+    let mesh = read_mesh("hole_in_point_set_mesh");
+    // A ring is a valid mesh of a domain with a hole...
+    assert_eq!(plain(&mesh), vec![]);
+    // ...but not of a point set.
+    let one_disc = ValidateOptions {
+        single_component: true,
+        ..ValidateOptions::default()
+    };
+    let v = validate(&mesh, None, &one_disc);
+    assert_eq!(v.len(), 1, "{v:#?}");
+    assert!(
+        matches!(v[0], Violation::HoleInMesh { loops: 2, .. }),
+        "{v:#?}"
+    );
+    assert!(v[0].to_string().contains("hole in the mesh"));
+}
+
+#[test]
+fn duplicate_vertex_names_both_copies() {
+    let v = plain(&read_mesh("duplicate_vertex"));
+    assert!(
+        v.iter().any(|x| matches!(
+            x,
+            Violation::DuplicateVertex { first: 2, second: 4, point } if *point == [1.0, 1.0]
+        )),
+        "{v:#?}"
+    );
+}
+
+#[test]
+fn missing_input_point_names_the_input_index() {
+    let mesh = read_mesh("missing_input_point");
+    assert_eq!(plain(&mesh), vec![]);
+    let input = Pslg::from_points(read_node("missing_input_point_input.node"));
+    let v = validate(&mesh, Some(&input), &ValidateOptions::default());
+    assert_eq!(
+        v,
+        vec![Violation::MissingInputPoint {
+            input: 4,
+            point: [0.5, 0.5]
+        }]
+    );
+    assert!(!verdict(&mesh, Some(&input), None).passed());
+}
+
+#[test]
+fn non_delaunay_edge_is_valid_but_fails_the_delaunay_bound() {
+    let mesh = read_mesh("non_delaunay_edge");
+    assert_eq!(plain(&mesh), vec![]);
+    let bounds = Bounds::parse("delaunay").expect("delaunay bounds");
+    let out = verdict(&mesh, None, Some(&bounds));
+    assert!(!out.passed(), "{out}");
+    assert_eq!(out.metrics.delaunay_violations, 1);
+    assert_eq!(out.metrics.delaunay_tolerance_violations, 1);
+    let check = out
+        .checks
+        .iter()
+        .find(|c| c.what.contains("Delaunay"))
+        .expect("a Delaunay row");
+    assert_eq!(check.status, Status::Fail);
+    assert_eq!(check.worst.map(|w| w.triangle), Some(0));
+    assert!(out.to_string().contains("FAIL"));
+}
+
+#[test]
+fn cocircular_square_passes_delaunay_and_hex_with_either_diagonal() {
+    for prefix in [
+        "cocircular_square_either_diagonal_a",
+        "cocircular_square_either_diagonal_b",
+    ] {
+        let mesh = read_mesh(prefix);
+        for name in ["delaunay", "hex"] {
+            let bounds = Bounds::parse(name).expect("bounds");
+            let out = verdict(&mesh, None, Some(&bounds));
+            assert!(out.passed(), "{prefix} with {name}:\n{out}");
+            assert_eq!(out.metrics.delaunay_violations, 0);
+            assert_eq!(out.metrics.delaunay_tolerance_violations, 0);
+        }
+    }
+}
+
+#[test]
+fn angle_43_8978_fails_the_hex_min_angle_at_its_triangle() {
+    let mesh = read_mesh("angle_43_8978");
+    assert_eq!(plain(&mesh), vec![]);
+    let out = verdict(&mesh, None, Some(&Bounds::parse("hex").expect("hex")));
+    assert!(!out.passed(), "{out}");
+    let failed: Vec<_> = out
+        .checks
+        .iter()
+        .filter(|c| c.status == Status::Fail)
+        .collect();
+    assert_eq!(failed.len(), 1, "{out}");
+    assert_eq!(failed[0].what, "min angle (deg)");
+    assert_eq!(failed[0].limit, HEX_MIN_ANGLE_DEG);
+    let worst = failed[0].worst.expect("worst triangle");
+    assert_eq!(worst.triangle, 0);
+    assert_eq!(worst.corners[0], [0.0, 0.0]);
+    assert!((worst.value - 43.8978).abs() < 1e-9, "{}", worst.value);
+    // Within the 1e-6° slack it would pass: 43.8978 is 8.6e-5° short.
+    assert!(HEX_MIN_ANGLE_DEG - worst.value > 1e-6);
+}
+
+#[test]
+fn right_angle_exactly_90_passes_the_hex_bounds() {
+    let mesh = read_mesh("right_angle_exactly_90");
+    let out = verdict(&mesh, None, Some(&Bounds::parse("hex").expect("hex")));
+    assert!(out.passed(), "{out}");
+    assert_eq!(out.metrics.max_angle.map(|w| w.value), Some(90.0));
+    assert_eq!(out.metrics.min_angle.map(|w| w.value), Some(45.0));
+}
+
+#[test]
+fn every_fixture_is_readable_and_checked_without_panicking() {
+    let dir = fixture("");
+    let mut prefixes: Vec<String> = std::fs::read_dir(&dir)
+        .expect("fixture dir")
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            e.file_name()
+                .to_str()?
+                .strip_suffix(".ele")
+                .map(str::to_string)
+        })
+        .collect();
+    prefixes.sort();
+    assert_eq!(prefixes.len(), 12, "{prefixes:?}");
+    for p in prefixes {
+        let mesh = read_mesh(&p);
+        for name in ["hex", "valid"] {
+            let b = Bounds::parse(name).expect("bounds");
+            let out = verdict(&mesh, None, Some(&b));
+            let json = serde_json::to_string(&out).expect("verdict as JSON");
+            assert!(json.contains("\"checks\""), "{p}: {json}");
+        }
+    }
+}
+
+#[test]
+fn the_io_reader_reads_every_fixture_as_the_test_reader_does() {
+    // `hexmesh verify` reads these files with the io module: it must see the same meshes.
+    let dir = fixture("");
+    let mut prefixes: Vec<String> = std::fs::read_dir(&dir)
+        .expect("fixture dir")
+        .filter_map(|e| e.ok())
+        .filter_map(|e| {
+            e.file_name()
+                .to_str()?
+                .strip_suffix(".ele")
+                .map(str::to_string)
+        })
+        .collect();
+    prefixes.sort();
+    for p in prefixes {
+        let by_io = hexmesh::io::read_mesh(&fixture(&p)).unwrap_or_else(|e| panic!("{p}: {e}"));
+        assert_eq!(by_io, read_mesh(&p), "{p}");
+    }
+    let input = hexmesh::io::read_input(&fixture("missing_input_point_input.node"))
+        .expect("the input of missing_input_point");
+    assert_eq!(input.points, read_node("missing_input_point_input.node"));
+}

@@ -1,0 +1,114 @@
+//! `verdict`: bounds per mesher applied to the right part of the mesh, the table `hexmesh
+//! verify` prints, and its JSON.
+
+use hexmesh::quality::{verdict, Bounds, Status};
+use hexmesh::{Pslg, TriMesh};
+
+/// A strip of three unit-high columns; the first (next to the segment x = 0) is half as wide,
+/// so its triangles have 26.6° angles while the others are 45°/45°/90°.
+fn strip() -> (TriMesh, Vec<[f64; 2]>) {
+    let xs = [0.0, 0.5, 1.5, 2.5];
+    let mut vertices: Vec<[f64; 2]> = xs.iter().map(|&x| [x, 0.0]).collect();
+    vertices.extend(xs.iter().map(|&x| [x, 1.0]));
+    let triangles = (0..3u32)
+        .flat_map(|c| [[c, c + 1, c + 5], [c, c + 5, c + 4]])
+        .collect();
+    let mesh = TriMesh {
+        vertices: vertices.clone(),
+        triangles,
+    };
+    (mesh, vertices)
+}
+
+#[test]
+fn hex_bounds_hold_away_from_segments_on_a_pslg() {
+    let (mesh, points) = strip();
+    let pslg = Pslg {
+        points: points.clone(),
+        segments: vec![[0, 4]],
+        ..Pslg::default()
+    };
+    let hex = Bounds::parse("hex").expect("hex");
+    let out = verdict(&mesh, Some(&pslg), Some(&hex));
+    assert!(out.passed(), "{out}");
+    let split = out.split.as_ref().expect("a PSLG gets the split figures");
+    assert_eq!(split.near_triangles, vec![0, 1]);
+    let near_min = split.near.min_angle.expect("near min angle").value;
+    assert!((near_min - 26.565051177).abs() < 1e-6, "{near_min}");
+    let text = out.to_string();
+    assert!(
+        text.contains("away from segments") && text.contains("near segments"),
+        "{text}"
+    );
+
+    // The same mesh as the mesh of a point set must meet the bounds everywhere.
+    let points_only = Pslg::from_points(points);
+    let out = verdict(&mesh, Some(&points_only), Some(&hex));
+    assert!(!out.passed());
+    let failed: Vec<&str> = out
+        .checks
+        .iter()
+        .filter(|c| c.status == Status::Fail)
+        .map(|c| c.what.as_str())
+        .collect();
+    assert_eq!(
+        failed,
+        vec!["min angle (deg)", "radius ratio R/(2r)"],
+        "{out}"
+    );
+}
+
+#[test]
+fn shortest_edge_over_d_min_is_skipped_without_input_and_checked_with_it() {
+    let (mesh, points) = strip();
+    let hex = Bounds::parse("hex").expect("hex");
+    let without = verdict(&mesh, None, Some(&hex));
+    let row = |v: &hexmesh::quality::Verdict| {
+        v.checks
+            .iter()
+            .find(|c| c.what == "shortest edge / d_min")
+            .map(|c| (c.status, c.value))
+            .expect("an edge row")
+    };
+    assert_eq!(row(&without).0, Status::Skipped);
+    // d_min 0.5 between (0,0) and (0.5,0), shortest edge 0.5: ratio 1.
+    let with = verdict(&mesh, Some(&Pslg::from_points(points.clone())), Some(&hex));
+    assert_eq!(row(&with), (Status::Ok, Some(1.0)));
+    // Input points 5 apart but a mesh edge of 0.5: 0.1 is below √7/(12√3) ≈ 0.127.
+    let sparse = Pslg::from_points(vec![[0.0, 0.0], [5.0, 0.0]]);
+    let tight = verdict(&mesh, Some(&sparse), Some(&hex));
+    assert_eq!(row(&tight), (Status::Fail, Some(0.1)));
+}
+
+#[test]
+fn the_json_names_each_check_with_status_value_and_limit() {
+    let (mesh, _) = strip();
+    let out = verdict(
+        &mesh,
+        None,
+        Some(&Bounds::parse("min-angle=30").expect("bounds")),
+    );
+    let json: serde_json::Value = serde_json::to_value(&out).expect("json");
+    let checks = json["checks"].as_array().expect("checks array");
+    let min = checks
+        .iter()
+        .find(|c| c["what"] == "min angle (deg)")
+        .expect("min angle row");
+    assert_eq!(min["status"], "fail");
+    assert_eq!(min["limit"], 30.0);
+    assert_eq!(min["worst"]["triangle"], 0);
+    assert_eq!(
+        json["metrics"]["angle_histogram"].as_array().map(Vec::len),
+        Some(180)
+    );
+    assert_eq!(json["bounds"], "min-angle=30");
+}
+
+#[test]
+fn without_bounds_only_validity_is_decided() {
+    let (mesh, _) = strip();
+    let out = verdict(&mesh, None, None);
+    assert!(out.passed(), "{out}");
+    assert_eq!(out.checks.len(), 1);
+    assert!(out.to_string().contains("none (validity only)"));
+}

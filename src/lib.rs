@@ -9,6 +9,8 @@ pub mod datasets;
 pub mod error;
 pub mod geom;
 pub mod io;
+pub mod isolate;
+pub mod maxangle;
 pub mod mesh;
 pub mod mesher;
 pub mod quality;

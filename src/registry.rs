@@ -11,6 +11,8 @@ pub fn meshers() -> Vec<Box<dyn Mesher>> {
         Box::new(crate::reference::cgal::Cgal),
         #[cfg(feature = "cgal")]
         Box::new(crate::reference::cgal::CgalConforming),
+        Box::new(crate::reference::TriangleMesher),
+        Box::new(crate::reference::SpadeMesher),
     ]
 }
 

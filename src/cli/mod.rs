@@ -39,6 +39,30 @@ enum Command {
     Mesh(MeshArgs),
     /// Check a mesh (PREFIX.node + PREFIX.ele): validity, and with --bounds a mesher's promises.
     Verify(VerifyArgs),
+    /// The paper's protocol: raise the requested minimum angle from 20° by --step until the
+    /// mesher fails; print the last good angle, its triangle count and time.
+    MaxAngle(MaxAngleArgs),
+}
+
+#[derive(Args)]
+struct MaxAngleArgs {
+    /// A Triangle .node or .poly file, or the name of a dataset.
+    input: String,
+    /// The mesher (see `hexmesh meshers`).
+    #[arg(long)]
+    mesher: String,
+    /// Degrees added at each attempt.
+    #[arg(long, default_value_t = crate::maxangle::DEFAULT_STEP)]
+    step: f64,
+    /// Seconds each attempt may take before it counts as a failure.
+    #[arg(long, default_value_t = 10.0)]
+    timeout: f64,
+    /// The first requested angle.
+    #[arg(long, default_value_t = crate::maxangle::DEFAULT_START)]
+    start: f64,
+    /// Print only the JSON object (the row goes to stderr).
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -66,9 +90,10 @@ struct MeshArgs {
     /// Budget: at most this many output vertices.
     #[arg(long)]
     max_vertices: Option<usize>,
-    /// Budget: seconds; the mesher runs in a child process that is killed when time is up.
-    #[arg(long)]
-    timeout: Option<f64>,
+    /// Budget: seconds. The mesher runs in a child process of this program, which is killed
+    /// when time is up (Triangle and spade cannot be stopped any other way).
+    #[arg(long, default_value_t = 600.0)]
+    timeout: f64,
 }
 
 #[derive(Args)]
@@ -117,6 +142,7 @@ fn run(command: Command) -> Result<ExitCode> {
         }
         Command::Mesh(args) => mesh(&args),
         Command::Verify(args) => verify(&args),
+        Command::MaxAngle(args) => max_angle(&args),
     }
 }
 
@@ -175,25 +201,18 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
             }
         }
     }
-    let timeout = match args.timeout {
-        Some(s) if s.is_finite() && s > 0.0 => Some(Duration::from_secs_f64(s)),
-        Some(s) => {
-            return Err(Error::Usage(format!(
-                "--timeout must be positive seconds, not {s}"
-            )))
-        }
-        None => None,
-    };
+    let timeout = seconds("--timeout", args.timeout)?;
     let params = Params {
         min_angle: args.min_angle,
         max_area: args.max_area,
         budget: Budget {
             max_steps: args.max_steps,
             max_vertices: args.max_vertices,
-            max_time: timeout,
+            max_time: Some(timeout),
         },
     };
-    let run = mesher.mesh(&input, &params)?;
+    let exe = crate::isolate::find_exe()?;
+    let run = crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout)?.run;
     if !run.complete {
         eprintln!(
             "hexmesh: mesher {} stopped early: {}; no mesh written",
@@ -234,6 +253,40 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
         print!("{verdict}");
     }
     Ok(if verdict.passed() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// A positive, finite number of seconds.
+fn seconds(option: &str, value: f64) -> Result<Duration> {
+    if value.is_finite() && value > 0.0 {
+        Ok(Duration::from_secs_f64(value))
+    } else {
+        Err(Error::Usage(format!(
+            "{option} must be a positive number of seconds, not {value}"
+        )))
+    }
+}
+
+fn max_angle(args: &MaxAngleArgs) -> Result<ExitCode> {
+    let input = load_input(&args.input)?;
+    input.validate_input()?;
+    crate::registry::mesher(&args.mesher)?;
+    let timeout = seconds("--timeout", args.timeout)?;
+    let exe = crate::isolate::find_exe()?;
+    let result =
+        crate::maxangle::max_angle(&exe, &args.mesher, &input, args.step, timeout, args.start)?;
+    let json = serde_json::to_string(&result)
+        .map_err(|e| Error::Usage(format!("cannot render the result as JSON: {e}")))?;
+    if args.json {
+        eprintln!("{result}");
+    } else {
+        println!("{result}");
+    }
+    println!("{json}");
+    Ok(if result.angle.is_some() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)

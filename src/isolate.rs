@@ -1,0 +1,700 @@
+//! Process isolation for one meshing call (DESIGN.md "Bad input": a mesher that does not
+//! terminate, or C code that calls `exit()`/`abort()`, must not take the harness down).
+//!
+//! The parent spawns `hexmesh __run-mesher`, writes the request to the child's stdin and
+//! reads the answer from its stdout, both in a compact little-endian binary format (raw f64
+//! and u32, so a million points cost 16 MB and come back bit-exact):
+//!
+//! request  = "HXMI" u32:version str:mesher params pslg
+//! params   = opt<f64>:min_angle opt<f64>:max_area opt<u64>:max_steps opt<u64>:max_vertices
+//!            opt<(u64 secs, u32 nanos)>:max_time
+//! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64)>:hexagon
+//! answer   = payload u64:payload_len "HXMRESLT"
+//! payload  = 0u8 u8:complete opt<str>:stop_reason u64:steps u64:secs u32:nanos u64:peak_rss
+//!            u64:nv (f64, f64)×nv u64:nt (u32, u32, u32)×nt
+//!          | 1u8 str:mesher str:message
+//! opt<T>   = 0u8 | 1u8 T;  str = u32:len utf-8 bytes
+//!
+//! The answer is a trailer at the very end of stdout, and the child flushes C's stdio
+//! buffers before writing it: Triangle prints its errors with `printf`, and such text must
+//! neither corrupt the answer nor get lost (it is quoted when the child dies).
+
+use std::io::{Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitCode, ExitStatus, Stdio};
+use std::thread;
+use std::time::{Duration, Instant};
+
+use crate::error::{Error, Result};
+use crate::geom::Hexagon;
+use crate::mesh::{Pslg, TriMesh};
+use crate::mesher::{Budget, MeshRun, Params};
+use crate::registry;
+
+/// The hidden subcommand the child runs.
+pub const CHILD_COMMAND: &str = "__run-mesher";
+
+const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
+const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
+const VERSION: u32 = 1;
+/// How much of the child's stderr and stdout an error quotes.
+const TAIL_BYTES: usize = 2000;
+
+/// One isolated meshing call: the run as the child saw it, and the child's peak resident
+/// memory (VmHWM; for a timed-out child, its value just before the kill).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Isolated {
+    pub run: MeshRun,
+    pub peak_rss_bytes: u64,
+}
+
+/// Runs `mesher` on `input` in a child process of `exe` and waits at most `timeout`.
+///
+/// A timeout is not an error: the run comes back empty with `complete == false` and
+/// `stop_reason` "timeout after …s". A child that dies (a signal, `exit()` from C) is an
+/// `Error::Mesher` naming the signal or status and quoting its output; an error the mesher
+/// returned in the child comes back as that error's message.
+pub fn run_isolated(
+    exe: &Path,
+    mesher: &str,
+    input: &Pslg,
+    params: &Params,
+    timeout: Duration,
+) -> Result<Isolated> {
+    input.validate_input()?;
+    registry::mesher(mesher)?;
+    let request = encode_request(mesher, input, params);
+    let spawn_err = |e: std::io::Error| Error::Io {
+        path: exe.to_path_buf(),
+        source: e,
+    };
+    let mut child = Command::new(exe)
+        .arg(CHILD_COMMAND)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(spawn_err)?;
+    let start = Instant::now();
+    let (stdin, stdout, stderr) = (child.stdin.take(), child.stdout.take(), child.stderr.take());
+    // A child that dies early closes its stdin: the broken pipe is expected, the exit status
+    // tells what happened.
+    let writer = thread::spawn(move || {
+        if let Some(mut s) = stdin {
+            let _ = s.write_all(&request);
+        }
+    });
+    let out_reader = thread::spawn(move || read_all(stdout));
+    let err_reader = thread::spawn(move || read_all(stderr));
+
+    let waited = wait_with_timeout(&mut child, timeout, start);
+    let elapsed = start.elapsed();
+    let _ = writer.join();
+    let out = out_reader.join().unwrap_or_default();
+    let err = err_reader.join().unwrap_or_default();
+    let status = match waited {
+        Ok(Waited::Exited(status)) => status,
+        Ok(Waited::TimedOut { peak_rss_bytes }) => {
+            return Ok(Isolated {
+                run: MeshRun {
+                    mesh: TriMesh::default(),
+                    complete: false,
+                    stop_reason: Some(format!("timeout after {}s", timeout.as_secs_f64())),
+                    steps: 0,
+                    elapsed,
+                },
+                peak_rss_bytes,
+            })
+        }
+        Err(e) => return Err(spawn_err(e)),
+    };
+    if !status.success() {
+        return Err(Error::mesher(
+            mesher,
+            format!(
+                "isolated child {}{}{}",
+                describe_status(status),
+                quote("stderr", &err),
+                quote("stdout", &out)
+            ),
+        ));
+    }
+    let payload = trailer(&out).ok_or_else(|| {
+        Error::mesher(
+            mesher,
+            format!(
+                "isolated child exited without an answer{}",
+                quote("stderr", &err)
+            ),
+        )
+    })?;
+    decode_answer(payload, mesher)
+}
+
+enum Waited {
+    Exited(ExitStatus),
+    TimedOut { peak_rss_bytes: u64 },
+}
+
+fn wait_with_timeout(
+    child: &mut Child,
+    timeout: Duration,
+    start: Instant,
+) -> std::io::Result<Waited> {
+    let mut pause = Duration::from_millis(1);
+    loop {
+        if let Some(status) = child.try_wait()? {
+            return Ok(Waited::Exited(status));
+        }
+        let spent = start.elapsed();
+        if spent >= timeout {
+            let peak_rss_bytes = peak_rss(&format!("/proc/{}/status", child.id()));
+            // The child may have exited between try_wait and kill: then kill fails harmlessly.
+            let _ = child.kill();
+            let status = child.wait()?;
+            if status.success() {
+                return Ok(Waited::Exited(status));
+            }
+            return Ok(Waited::TimedOut { peak_rss_bytes });
+        }
+        thread::sleep(pause.min(timeout - spent));
+        pause = (pause * 2).min(Duration::from_millis(20));
+    }
+}
+
+fn read_all<R: Read>(source: Option<R>) -> Vec<u8> {
+    let mut buf = Vec::new();
+    if let Some(mut s) = source {
+        let _ = s.read_to_end(&mut buf);
+    }
+    buf
+}
+
+fn describe_status(status: ExitStatus) -> String {
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(sig) = status.signal() {
+            let name = match sig {
+                4 => "SIGILL",
+                6 => "SIGABRT",
+                7 => "SIGBUS",
+                8 => "SIGFPE",
+                9 => "SIGKILL",
+                11 => "SIGSEGV",
+                15 => "SIGTERM",
+                _ => "signal",
+            };
+            return format!("was killed by signal {sig} ({name})");
+        }
+    }
+    match status.code() {
+        Some(code) => format!("exited with status {code}"),
+        None => "ended abnormally".to_string(),
+    }
+}
+
+fn quote(what: &str, bytes: &[u8]) -> String {
+    let text = String::from_utf8_lossy(bytes);
+    let text = text.trim();
+    if text.is_empty() {
+        return String::new();
+    }
+    let mut cut = text.len().saturating_sub(TAIL_BYTES);
+    while !text.is_char_boundary(cut) {
+        cut += 1;
+    }
+    format!("; {what}: {}", &text[cut..])
+}
+
+/// The peak resident set size recorded in a /proc status file, in bytes (0 if unknown).
+fn peak_rss(status_file: &str) -> u64 {
+    std::fs::read_to_string(status_file)
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find_map(|l| l.strip_prefix("VmHWM:"))
+                .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<u64>().ok())
+        })
+        .map_or(0, |kb| kb * 1024)
+}
+
+/// The payload of the answer trailer at the end of `out`, if there is a whole one.
+fn trailer(out: &[u8]) -> Option<&[u8]> {
+    let body = out.strip_suffix(ANSWER_MAGIC.as_slice())?;
+    let len_at = body.len().checked_sub(8)?;
+    let len = u64::from_le_bytes(body[len_at..].try_into().ok()?);
+    let start = len_at.checked_sub(usize::try_from(len).ok()?)?;
+    Some(&body[start..len_at])
+}
+
+/// The child side: reads a request from stdin, runs the mesher, writes the answer to stdout.
+/// The CLI calls this for the hidden `__run-mesher` subcommand.
+pub fn child_main() -> ExitCode {
+    let mut request = Vec::new();
+    if let Err(e) = std::io::stdin().lock().read_to_end(&mut request) {
+        eprintln!("hexmesh {CHILD_COMMAND}: cannot read the request: {e}");
+        return ExitCode::from(2);
+    }
+    let (name, input, params) = match decode_request(&request) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("hexmesh {CHILD_COMMAND}: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    drop(request);
+    let mut payload = Vec::new();
+    match run_in_child(&name, &input, &params) {
+        Ok((run, rss)) => encode_run(&mut payload, &run, rss),
+        Err(e) => {
+            let (mesher, message) = match e {
+                Error::Mesher { mesher, message } => (mesher, message),
+                other => (name.clone(), other.to_string()),
+            };
+            payload.push(1);
+            put_str(&mut payload, &mesher);
+            put_str(&mut payload, &message);
+        }
+    }
+    flush_c_stdio();
+    let len = payload.len() as u64;
+    put_u64(&mut payload, len);
+    payload.extend_from_slice(ANSWER_MAGIC);
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_all(&payload).and_then(|_| out.flush()) {
+        eprintln!("hexmesh {CHILD_COMMAND}: cannot write the answer: {e}");
+        return ExitCode::from(2);
+    }
+    ExitCode::SUCCESS
+}
+
+fn run_in_child(name: &str, input: &Pslg, params: &Params) -> Result<(MeshRun, u64)> {
+    input.validate_input()?;
+    let mesher = registry::mesher(name)?;
+    let start = Instant::now();
+    let mut run = mesher.mesh(input, params)?;
+    run.elapsed = start.elapsed();
+    Ok((run, peak_rss("/proc/self/status")))
+}
+
+/// Writes out what C code left in its stdio buffers, so that it lands before the answer.
+fn flush_c_stdio() {
+    #[cfg(unix)]
+    {
+        extern "C" {
+            fn fflush(stream: *mut std::ffi::c_void) -> std::ffi::c_int;
+        }
+        // SAFETY: fflush(NULL) flushes every open output stream; it takes no Rust data.
+        unsafe {
+            fflush(std::ptr::null_mut());
+        }
+    }
+}
+
+fn put_u32(b: &mut Vec<u8>, v: u32) {
+    b.extend_from_slice(&v.to_le_bytes());
+}
+
+fn put_u64(b: &mut Vec<u8>, v: u64) {
+    b.extend_from_slice(&v.to_le_bytes());
+}
+
+fn put_f64(b: &mut Vec<u8>, v: f64) {
+    b.extend_from_slice(&v.to_le_bytes());
+}
+
+fn put_str(b: &mut Vec<u8>, s: &str) {
+    put_u32(b, s.len() as u32);
+    b.extend_from_slice(s.as_bytes());
+}
+
+fn put_opt<T>(b: &mut Vec<u8>, v: Option<T>, put: impl FnOnce(&mut Vec<u8>, T)) {
+    match v {
+        Some(x) => {
+            b.push(1);
+            put(b, x);
+        }
+        None => b.push(0),
+    }
+}
+
+fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
+    let mut b = Vec::with_capacity(
+        64 + mesher.len()
+            + 16 * (input.points.len() + input.holes.len())
+            + 8 * input.segments.len(),
+    );
+    b.extend_from_slice(REQUEST_MAGIC);
+    put_u32(&mut b, VERSION);
+    put_str(&mut b, mesher);
+    put_opt(&mut b, params.min_angle, put_f64);
+    put_opt(&mut b, params.max_area, put_f64);
+    put_opt(&mut b, params.budget.max_steps, put_u64);
+    put_opt(&mut b, params.budget.max_vertices, |b, v| {
+        put_u64(b, v as u64)
+    });
+    put_opt(&mut b, params.budget.max_time, |b, d| {
+        put_u64(b, d.as_secs());
+        put_u32(b, d.subsec_nanos());
+    });
+    put_u64(&mut b, input.points.len() as u64);
+    for p in &input.points {
+        put_f64(&mut b, p[0]);
+        put_f64(&mut b, p[1]);
+    }
+    put_u64(&mut b, input.segments.len() as u64);
+    for s in &input.segments {
+        put_u32(&mut b, s[0]);
+        put_u32(&mut b, s[1]);
+    }
+    put_u64(&mut b, input.holes.len() as u64);
+    for h in &input.holes {
+        put_f64(&mut b, h[0]);
+        put_f64(&mut b, h[1]);
+    }
+    put_opt(&mut b, input.hexagon, |b, h| {
+        put_f64(b, h.center[0]);
+        put_f64(b, h.center[1]);
+        put_f64(b, h.circumradius);
+    });
+    b
+}
+
+fn encode_run(b: &mut Vec<u8>, run: &MeshRun, peak_rss_bytes: u64) {
+    b.push(0);
+    b.push(u8::from(run.complete));
+    put_opt(b, run.stop_reason.as_deref(), put_str);
+    put_u64(b, run.steps);
+    put_u64(b, run.elapsed.as_secs());
+    put_u32(b, run.elapsed.subsec_nanos());
+    put_u64(b, peak_rss_bytes);
+    put_u64(b, run.mesh.vertices.len() as u64);
+    for v in &run.mesh.vertices {
+        put_f64(b, v[0]);
+        put_f64(b, v[1]);
+    }
+    put_u64(b, run.mesh.triangles.len() as u64);
+    for t in &run.mesh.triangles {
+        for &i in t {
+            put_u32(b, i);
+        }
+    }
+}
+
+/// Bounds-checked reading of the binary format: a short or malformed message is an error,
+/// never a panic or a huge allocation.
+struct Reader<'a> {
+    buf: &'a [u8],
+    pos: usize,
+    what: &'static str,
+}
+
+impl<'a> Reader<'a> {
+    fn bad(&self, detail: &str) -> Error {
+        Error::mesher(
+            "isolate",
+            format!("malformed {} at byte {}: {detail}", self.what, self.pos),
+        )
+    }
+
+    fn take(&mut self, n: usize) -> Result<&'a [u8]> {
+        match self.pos.checked_add(n) {
+            Some(end) if end <= self.buf.len() => {
+                let s = &self.buf[self.pos..end];
+                self.pos = end;
+                Ok(s)
+            }
+            _ => Err(self.bad(&format!("{n} more bytes expected"))),
+        }
+    }
+
+    fn u8(&mut self) -> Result<u8> {
+        Ok(self.take(1)?[0])
+    }
+
+    fn u32(&mut self) -> Result<u32> {
+        let s = self.take(4)?;
+        Ok(u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
+    }
+
+    fn u64(&mut self) -> Result<u64> {
+        let mut a = [0u8; 8];
+        a.copy_from_slice(self.take(8)?);
+        Ok(u64::from_le_bytes(a))
+    }
+
+    fn f64(&mut self) -> Result<f64> {
+        Ok(f64::from_bits(self.u64()?))
+    }
+
+    fn flag(&mut self) -> Result<bool> {
+        match self.u8()? {
+            0 => Ok(false),
+            1 => Ok(true),
+            b => Err(self.bad(&format!("flag byte {b}"))),
+        }
+    }
+
+    fn str(&mut self) -> Result<String> {
+        let n = self.u32()? as usize;
+        let bytes = self.take(n)?;
+        String::from_utf8(bytes.to_vec()).map_err(|_| self.bad("string is not UTF-8"))
+    }
+
+    /// A count of items of `item_bytes` each that must fit in what is left.
+    fn count(&mut self, item_bytes: usize) -> Result<usize> {
+        let n = self.u64()?;
+        let left = (self.buf.len() - self.pos) as u64;
+        if n.checked_mul(item_bytes as u64)
+            .is_none_or(|total| total > left)
+        {
+            return Err(self.bad(&format!("count {n} exceeds the message")));
+        }
+        Ok(n as usize)
+    }
+
+    fn points(&mut self) -> Result<Vec<[f64; 2]>> {
+        let n = self.count(16)?;
+        (0..n).map(|_| Ok([self.f64()?, self.f64()?])).collect()
+    }
+
+    fn finish(&self) -> Result<()> {
+        if self.pos == self.buf.len() {
+            Ok(())
+        } else {
+            Err(self.bad("trailing bytes"))
+        }
+    }
+}
+
+fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
+    let mut r = Reader {
+        buf,
+        pos: 0,
+        what: "request",
+    };
+    if r.take(4)? != REQUEST_MAGIC {
+        return Err(r.bad("not a hexmesh request"));
+    }
+    let version = r.u32()?;
+    if version != VERSION {
+        return Err(r.bad(&format!("version {version}, expected {VERSION}")));
+    }
+    let name = r.str()?;
+    let min_angle = if r.flag()? { Some(r.f64()?) } else { None };
+    let max_area = if r.flag()? { Some(r.f64()?) } else { None };
+    let max_steps = if r.flag()? { Some(r.u64()?) } else { None };
+    let max_vertices = if r.flag()? {
+        Some(usize::try_from(r.u64()?).unwrap_or(usize::MAX))
+    } else {
+        None
+    };
+    let max_time = if r.flag()? {
+        let secs = r.u64()?;
+        let nanos = r.u32()?;
+        if nanos >= 1_000_000_000 {
+            return Err(r.bad("nanoseconds out of range"));
+        }
+        Some(Duration::new(secs, nanos))
+    } else {
+        None
+    };
+    let points = r.points()?;
+    let m = r.count(8)?;
+    let segments = (0..m)
+        .map(|_| Ok([r.u32()?, r.u32()?]))
+        .collect::<Result<Vec<_>>>()?;
+    let holes = r.points()?;
+    let hexagon = if r.flag()? {
+        Some(Hexagon {
+            center: [r.f64()?, r.f64()?],
+            circumradius: r.f64()?,
+        })
+    } else {
+        None
+    };
+    r.finish()?;
+    let params = Params {
+        min_angle,
+        max_area,
+        budget: Budget {
+            max_steps,
+            max_vertices,
+            max_time,
+        },
+    };
+    let input = Pslg {
+        points,
+        segments,
+        holes,
+        hexagon,
+    };
+    Ok((name, input, params))
+}
+
+fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
+    let mut r = Reader {
+        buf,
+        pos: 0,
+        what: "answer",
+    };
+    match r.u8()? {
+        0 => {}
+        1 => {
+            let name = r.str()?;
+            let message = r.str()?;
+            return Err(Error::Mesher {
+                mesher: if name.is_empty() {
+                    mesher.to_string()
+                } else {
+                    name
+                },
+                message,
+            });
+        }
+        b => return Err(r.bad(&format!("status byte {b}"))),
+    }
+    let complete = r.flag()?;
+    let stop_reason = if r.flag()? { Some(r.str()?) } else { None };
+    let steps = r.u64()?;
+    let secs = r.u64()?;
+    let nanos = r.u32()?;
+    if nanos >= 1_000_000_000 {
+        return Err(r.bad("nanoseconds out of range"));
+    }
+    let peak_rss_bytes = r.u64()?;
+    let vertices = r.points()?;
+    let nt = r.count(12)?;
+    let triangles = (0..nt)
+        .map(|_| Ok([r.u32()?, r.u32()?, r.u32()?]))
+        .collect::<Result<Vec<_>>>()?;
+    r.finish()?;
+    Ok(Isolated {
+        run: MeshRun {
+            mesh: TriMesh {
+                vertices,
+                triangles,
+            },
+            complete,
+            stop_reason,
+            steps,
+            elapsed: Duration::new(secs, nanos),
+        },
+        peak_rss_bytes,
+    })
+}
+
+/// The hexmesh binary to run children of: `HEXMESH_EXE` if set; else the running executable
+/// if it is hexmesh; else a `hexmesh` next to it or one directory up (cargo puts test
+/// binaries in target/<profile>/deps/, the binary in target/<profile>/).
+pub fn find_exe() -> Result<PathBuf> {
+    if let Some(p) = std::env::var_os("HEXMESH_EXE").filter(|p| !p.is_empty()) {
+        let p = PathBuf::from(p);
+        if p.is_file() {
+            return Ok(p);
+        }
+        return Err(Error::Usage(format!(
+            "HEXMESH_EXE={} is not a file",
+            p.display()
+        )));
+    }
+    let current = std::env::current_exe().map_err(|e| Error::Io {
+        path: PathBuf::from("/proc/self/exe"),
+        source: e,
+    })?;
+    if current.file_stem().is_some_and(|s| s == "hexmesh") {
+        return Ok(current);
+    }
+    let name = format!("hexmesh{}", std::env::consts::EXE_SUFFIX);
+    let dir = current.parent();
+    let candidates = [
+        dir.map(|d| d.join(&name)),
+        dir.and_then(Path::parent).map(|d| d.join(&name)),
+    ];
+    candidates
+        .into_iter()
+        .flatten()
+        .find(|p| p.is_file())
+        .ok_or_else(|| {
+            Error::Usage(format!(
+                "cannot find the hexmesh binary near {}; set HEXMESH_EXE",
+                current.display()
+            ))
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_request_round_trips_bit_exactly() {
+        let input = Pslg {
+            points: vec![[0.1, -0.0], [f64::MIN_POSITIVE, 3.0e300], [1.0 / 3.0, 2.0]],
+            segments: vec![[0, 1], [1, 2]],
+            holes: vec![[0.25, 0.5]],
+            hexagon: Some(Hexagon {
+                center: [0.5, 0.5],
+                circumradius: 2.0,
+            }),
+        };
+        let mut params = Params::default().with_min_angle(30.25);
+        params.budget.max_time = Some(Duration::from_millis(1500));
+        params.budget.max_vertices = Some(77);
+        let buf = encode_request("spade", &input, &params);
+        let (name, back, p) = decode_request(&buf).unwrap();
+        assert_eq!(name, "spade");
+        assert_eq!(p, params);
+        assert_eq!(back.segments, input.segments);
+        let bits = |v: &[[f64; 2]]| {
+            v.iter()
+                .flat_map(|p| p.map(f64::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&back.points), bits(&input.points));
+        assert_eq!(back.hexagon, input.hexagon);
+    }
+
+    #[test]
+    fn truncated_and_oversized_messages_are_errors() {
+        let buf = encode_request(
+            "spade",
+            &Pslg::from_points(vec![[0.0, 0.0]]),
+            &Params::default(),
+        );
+        for cut in 0..buf.len() {
+            assert!(decode_request(&buf[..cut]).is_err(), "cut at {cut}");
+        }
+        let mut huge = buf.clone();
+        // The point count sits right after magic, version, name and five absent options.
+        let at = 4 + 4 + 4 + 5 + 5;
+        huge[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
+        assert!(decode_request(&huge).is_err());
+    }
+
+    #[test]
+    fn the_answer_is_found_after_foreign_output() {
+        let run = MeshRun {
+            mesh: TriMesh {
+                vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+                triangles: vec![[0, 1, 2]],
+            },
+            complete: true,
+            stop_reason: None,
+            steps: 3,
+            elapsed: Duration::from_micros(5),
+        };
+        let mut out = b"Warning: something printed by C\n".to_vec();
+        let mut payload = Vec::new();
+        encode_run(&mut payload, &run, 4096);
+        let len = payload.len() as u64;
+        out.extend_from_slice(&payload);
+        put_u64(&mut out, len);
+        out.extend_from_slice(ANSWER_MAGIC);
+        let back = decode_answer(trailer(&out).unwrap(), "x").unwrap();
+        assert_eq!(back.run, run);
+        assert_eq!(back.peak_rss_bytes, 4096);
+        assert!(trailer(&out[..out.len() - 1]).is_none());
+    }
+}

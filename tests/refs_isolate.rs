@@ -1,0 +1,225 @@
+//! Process isolation and the max-angle protocol, through the real `hexmesh` binary: a normal
+//! run comes back bit-exactly, a run that does not terminate is cut off at its timeout, a
+//! dying child is an error naming how it died, and the paper's max-angle protocol gives a
+//! plausible angle for Triangle and spade.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use hexmesh::isolate::{find_exe, run_isolated};
+use hexmesh::maxangle::{max_angle, DEFAULT_START, DEFAULT_STEP};
+use hexmesh::{mesher, Error, Params, Pslg};
+
+fn exe() -> &'static Path {
+    Path::new(env!("CARGO_BIN_EXE_hexmesh"))
+}
+
+fn point_set(n: u32) -> Pslg {
+    let pts = (1..=n)
+        .map(|i| {
+            let i = f64::from(i);
+            [
+                (i * 0.618_033_988_749_895).fract(),
+                (i * 0.414_213_562_373_095).fract(),
+            ]
+        })
+        .collect();
+    Pslg::from_points(pts)
+}
+
+fn bits(v: &[[f64; 2]]) -> Vec<u64> {
+    v.iter().flat_map(|p| p.map(f64::to_bits)).collect()
+}
+
+#[test]
+fn an_isolated_run_returns_the_in_process_mesh_bit_exactly() {
+    let input = point_set(40);
+    let params = Params::default().with_min_angle(30.0);
+    for name in ["spade", "triangle"] {
+        let local = mesher(name).unwrap().mesh(&input, &params).unwrap();
+        let iso = run_isolated(exe(), name, &input, &params, Duration::from_secs(30)).unwrap();
+        assert_eq!(
+            bits(&iso.run.mesh.vertices),
+            bits(&local.mesh.vertices),
+            "{name}"
+        );
+        assert_eq!(iso.run.mesh.triangles, local.mesh.triangles, "{name}");
+        assert_eq!(iso.run.complete, local.complete);
+        assert_eq!(iso.run.steps, local.steps);
+        assert!(iso.peak_rss_bytes > 0, "{name}: no VmHWM");
+    }
+}
+
+#[test]
+fn triangle_at_44_degrees_is_cut_off_at_the_timeout() {
+    let input = point_set(40);
+    let params = Params::default().with_min_angle(44.0);
+    let started = Instant::now();
+    let iso = run_isolated(
+        exe(),
+        "triangle",
+        &input,
+        &params,
+        Duration::from_millis(500),
+    )
+    .unwrap();
+    let waited = started.elapsed();
+    assert!(!iso.run.complete);
+    assert_eq!(iso.run.stop_reason.as_deref(), Some("timeout after 0.5s"));
+    assert!(iso.run.mesh.triangles.is_empty());
+    assert!(waited < Duration::from_secs(3), "took {waited:?}");
+}
+
+#[test]
+fn an_error_in_the_child_is_forwarded_with_its_message() {
+    let input = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+        holes: vec![[0.5, 0.0]],
+        hexagon: None,
+    };
+    let err = run_isolated(
+        exe(),
+        "spade",
+        &input,
+        &Params::default(),
+        Duration::from_secs(30),
+    )
+    .unwrap_err();
+    match err {
+        Error::Mesher { mesher, message } => {
+            assert_eq!(mesher, "spade");
+            assert!(message.contains("hole 0"), "{message}");
+        }
+        other => panic!("unexpected error {other}"),
+    }
+}
+
+#[test]
+fn bad_input_and_unknown_meshers_are_refused_before_spawning() {
+    let dup = Pslg::from_points(vec![[0.0, 0.0], [0.0, 0.0]]);
+    let t = Duration::from_secs(5);
+    assert!(matches!(
+        run_isolated(exe(), "spade", &dup, &Params::default(), t),
+        Err(Error::Input { .. })
+    ));
+    assert!(matches!(
+        run_isolated(exe(), "nope", &point_set(5), &Params::default(), t),
+        Err(Error::UnknownMesher { .. })
+    ));
+}
+
+/// A stand-in child written as a shell script, to die in ways hexmesh itself does not.
+fn script(name: &str, body: &str) -> PathBuf {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
+    let path = dir.join(name);
+    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
+    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    path
+}
+
+#[test]
+fn a_child_killed_by_a_signal_is_an_error_naming_the_signal() {
+    let exe = script(
+        "refs_abort.sh",
+        "cat >/dev/null; echo dying >&2; kill -ABRT $$",
+    );
+    let err = run_isolated(
+        &exe,
+        "spade",
+        &point_set(5),
+        &Params::default(),
+        Duration::from_secs(10),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("SIGABRT") && err.contains("dying"), "{err}");
+}
+
+#[test]
+fn a_child_that_exits_like_triangle_is_an_error_quoting_its_stdout() {
+    let exe = script(
+        "refs_exit.sh",
+        "cat >/dev/null; echo 'Error:  Ran out of precision at (1, 2).'; exit 1",
+    );
+    let err = run_isolated(
+        &exe,
+        "triangle",
+        &point_set(5),
+        &Params::default(),
+        Duration::from_secs(10),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        err.contains("status 1") && err.contains("Ran out of precision"),
+        "{err}"
+    );
+}
+
+#[test]
+fn find_exe_honours_hexmesh_exe() {
+    // Only this test touches the variable, so setting it cannot race another test's reading.
+    std::env::set_var("HEXMESH_EXE", exe());
+    assert_eq!(find_exe().unwrap(), exe());
+    std::env::set_var("HEXMESH_EXE", "/nonexistent/hexmesh");
+    assert!(find_exe().is_err());
+    std::env::remove_var("HEXMESH_EXE");
+    assert!(find_exe().unwrap().ends_with("hexmesh"));
+}
+
+#[test]
+fn max_angle_of_a_small_point_set_is_plausible_for_triangle_and_spade() {
+    let input = point_set(12);
+    for name in ["triangle", "spade"] {
+        let r = max_angle(
+            exe(),
+            name,
+            &input,
+            DEFAULT_STEP,
+            Duration::from_secs(2),
+            DEFAULT_START,
+        )
+        .unwrap();
+        let angle = r.angle.unwrap_or(0.0);
+        assert!((30.0..45.0).contains(&angle), "{r}");
+        assert!(r.measured_min_angle.unwrap() >= angle - 1e-6, "{r}");
+        assert!(r.triangles > 0);
+        assert_eq!(r.failed_at, angle + DEFAULT_STEP, "{r}");
+        eprintln!("{r}");
+    }
+}
+
+#[test]
+fn max_angle_refuses_a_bad_step_an_unknown_mesher_and_a_missing_binary() {
+    let input = point_set(5);
+    let t = Duration::from_secs(2);
+    assert!(max_angle(exe(), "spade", &input, 0.0, t, 20.0).is_err());
+    assert!(max_angle(exe(), "spade", &input, f64::NAN, t, 20.0).is_err());
+    assert!(matches!(
+        max_angle(exe(), "nope", &input, 0.25, t, 20.0),
+        Err(Error::UnknownMesher { .. })
+    ));
+    assert!(matches!(
+        max_angle(
+            Path::new("/nonexistent/hexmesh"),
+            "spade",
+            &input,
+            0.25,
+            t,
+            20.0
+        ),
+        Err(Error::Io { .. })
+    ));
+}
+
+#[test]
+fn max_angle_on_a_pslg_with_sloped_segments_is_plausible() {
+    // The IMR letters: Steiner points on sloped segments are rounded off the segment's line,
+    // which conformity must tolerate, or every step would fail.
+    let input = hexmesh::datasets::by_name("imr").unwrap();
+    let r = max_angle(exe(), "triangle", &input, 1.0, Duration::from_secs(2), 30.0).unwrap();
+    let angle = r.angle.unwrap_or(0.0);
+    assert!((30.0..45.0).contains(&angle), "{r}");
+}

@@ -8,11 +8,13 @@
 //! - `plot`: angle distributions and scaling plots (SVG + PNG).
 //! - `readme`: the generated `README.md`.
 //! - `progress`: a progress bar on a terminal, plain lines otherwise.
+//! - `run`: the cases, isolated and checked; `run_report` ties everything together.
 
 pub mod plot;
 pub mod progress;
 pub mod readme;
 pub mod row;
+mod run;
 pub mod stats;
 pub mod table1;
 
@@ -23,6 +25,7 @@ use crate::error::{Error, Result};
 use crate::mesher::Params;
 
 pub use row::{Row, COLUMNS, VOLATILE_COLUMNS};
+pub use run::run_report;
 pub use table1::MaxAngleRow;
 
 /// The reference quality meshers: asked for [`REFERENCE_MIN_ANGLE`] in `results.csv` and put

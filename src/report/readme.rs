@@ -210,10 +210,9 @@ pub fn render(
         } else if m.err.is_empty() {
             let _ = writeln!(
                 md,
-                "- `{}` × `{}`: fails at the first request, {:.2}°: {}",
+                "- `{}` × `{}`: fails at the first request ({}).",
                 m.dataset,
                 m.mesher,
-                m.start,
                 one_line(&m.next_failure)
             );
         } else {

@@ -17,6 +17,7 @@ pub mod quality;
 pub mod reference;
 pub mod registry;
 pub mod report;
+pub mod rhomb;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};

@@ -13,6 +13,7 @@ pub fn meshers() -> Vec<Box<dyn Mesher>> {
         Box::new(crate::reference::cgal::CgalConforming),
         Box::new(crate::reference::TriangleMesher),
         Box::new(crate::reference::SpadeMesher),
+        Box::new(crate::rhomb::Rhomb),
     ]
 }
 

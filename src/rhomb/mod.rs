@@ -1,0 +1,194 @@
+//! `rhomb`: the rhomboidal quad-tree mesher of Neugebauer & Diekmann, "Improved Mesh Generation:
+//! Not Simple but Good" (paper 001), for point sets inside their bounding hexagon.
+//!
+//! Steps (paper Sec. 4): root rhomb (`lattice`), split crowded rhombs with 2:1 balance (`tree`,
+//! steps 1–3), centre every point in a patch of melted rhombs (`centring`, steps 4–5, Sec. 5.4),
+//! triangulate rhombs by the fixed patterns and the patches (`patterns`, steps 10 and 12).
+//! Promise: every angle in [30°, 90°]; the mesh covers the bounding hexagon; every input point is
+//! a vertex bit-exactly (vertex i is input point i); the six hexagon corners are vertices.
+//! Inputs with segments (paper Sec. 5.1–5.8: moving conditions, border-boxes, polygon corners)
+//! are refused, as are points closer than 2^-48 of the hexagon (the lattice depth) and inputs
+//! whose needed triangles are too small for f64 output to keep the angles within 1e-6° (see
+//! `rounding_check`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
+//! one output vertex each). A run stopped by a budget returns the balanced tree's triangulation
+//! without the input points (`complete == false`), which still meets the angle bounds.
+
+mod centring;
+#[cfg(test)]
+mod fixtures;
+mod lattice;
+mod patterns;
+mod tree;
+
+use std::time::Instant;
+
+use crate::error::{Error, Result};
+use crate::mesh::Pslg;
+use crate::mesher::{MeshRun, Mesher, Params};
+use crate::quality::ANGLE_SLACK_DEG;
+
+use lattice::Frame;
+use tree::{Guard, Stop, Tree};
+
+/// The rhomboidal quad-tree mesher (paper 001), point sets only.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Rhomb;
+
+const NAME: &str = "rhomb";
+
+impl Mesher for Rhomb {
+    fn name(&self) -> &'static str {
+        NAME
+    }
+
+    fn version(&self) -> String {
+        format!("hexmesh {} (point sets)", env!("CARGO_PKG_VERSION"))
+    }
+
+    fn settings(&self, params: &Params) -> String {
+        let mut s = String::from("window x=5; melted centring patches; bounds 30-90 deg fixed");
+        if let Some(a) = params.max_area {
+            s.push_str(&format!("; max_area {a}"));
+        }
+        if params.min_angle.is_some() {
+            s.push_str("; min_angle ignored");
+        }
+        s
+    }
+
+    fn supports_segments(&self) -> bool {
+        false
+    }
+
+    fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        let start = Instant::now();
+        if input.has_segments() {
+            return Err(Error::mesher(
+                NAME,
+                "rhomb meshes point sets only; PSLG support (paper 001 Sec. 5.1-5.8) is not \
+                 implemented",
+            ));
+        }
+        input.validate_input()?;
+        let hex = input.bounding_hexagon();
+        if !(hex.circumradius.is_finite() && hex.circumradius > 0.0) {
+            return Err(Error::mesher(
+                NAME,
+                format!("the bounding hexagon has circumradius {}", hex.circumradius),
+            ));
+        }
+        if let Some(i) = input.points.iter().position(|&p| !hex.contains_strictly(p)) {
+            return Err(Error::mesher(
+                NAME,
+                format!("point {i} does not lie strictly inside the bounding hexagon"),
+            ));
+        }
+        let frame = Frame::new(hex);
+        let coords = input.points.iter().map(|&p| frame.locate(p)).collect();
+        // max_area in units of the root side 2R squared, and the coarsest level whose
+        // equilateral halves (√3/4·side²) respect it.
+        let root_side = 2.0 * hex.circumradius;
+        let max_area = match params.max_area {
+            None => None,
+            Some(a) if a > 0.0 && a.is_finite() => Some(a / (root_side * root_side)),
+            Some(a) => {
+                return Err(Error::mesher(
+                    NAME,
+                    format!("max_area must be positive and finite, not {a}"),
+                ))
+            }
+        };
+        let area_level = max_area.map_or(0, |a| {
+            let mut level = 0u8;
+            while level < lattice::MAX_LEVEL && 3f64.sqrt() / 4.0 * 0.25f64.powi(level as i32) > a {
+                level += 1;
+            }
+            level
+        });
+        let mut tree = Tree::new(coords, area_level);
+        let guard = Guard::new(params.budget);
+        let n = input.points.len() as u32;
+        let outcome = tree
+            .split_crowded(&guard)
+            .and_then(|()| centring::centre_points(&mut tree, n, max_area, &guard));
+        let (patches, stop_reason) = match outcome {
+            Ok(patches) => (patches, None),
+            Err(Stop::Budget(reason)) => (Vec::new(), Some(reason)),
+            Err(Stop::Depth) => {
+                return Err(Error::mesher(
+                    NAME,
+                    format!(
+                        "input points too close together for the f64 lattice (more than {} \
+                         levels of rhombs needed)",
+                        lattice::MAX_LEVEL
+                    ),
+                ))
+            }
+        };
+        let mesh = patterns::triangulate(&tree, &frame, &input.points, &patches);
+        rounding_check(&mesh)?;
+        Ok(MeshRun {
+            mesh,
+            complete: stop_reason.is_none(),
+            stop_reason,
+            steps: tree.steps,
+            elapsed: start.elapsed(),
+        })
+    }
+}
+
+/// The construction's angles are exactly 30°–90° (patterns) or inside it with margin (moved
+/// points); only the rounding of lattice vertices to f64 can push one out. That happens when
+/// the input forces triangles far smaller than the coordinates, e.g. a point a relative 1e-9
+/// from a fitted hexagon's edge at a distance from the origin. We refuse rather than return a
+/// mesh that breaks the promise.
+fn rounding_check(mesh: &crate::mesh::TriMesh) -> Result<()> {
+    let mut worst: Option<(f64, usize)> = None;
+    let mut shortest = f64::INFINITY;
+    for t in 0..mesh.triangles.len() {
+        let c = mesh.corners(t);
+        for k in 0..3 {
+            let (o, a, b) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
+            shortest = shortest.min(crate::geom::dist(o, a));
+            let angle = angle_deg(o, a, b);
+            let excess = (30.0 - angle).max(angle - 90.0);
+            if excess > ANGLE_SLACK_DEG && worst.is_none_or(|(w, _)| excess > w) {
+                worst = Some((excess, t));
+            }
+        }
+    }
+    match worst {
+        None => Ok(()),
+        Some((excess, t)) => {
+            let magnitude = mesh
+                .vertices
+                .iter()
+                .flat_map(|p| [p[0].abs(), p[1].abs()])
+                .fold(0.0, f64::max);
+            Err(Error::mesher(
+                NAME,
+                format!(
+                    "f64 rounding of the output coordinates puts an angle of triangle {t} \
+                     {excess:e} degrees outside [30, 90]: the input needs edges as short as \
+                     {shortest:e} next to coordinates as large as {magnitude:e} (points very \
+                     close together or to the bounding hexagon's edges); translate the input \
+                     nearer the origin or enlarge the hexagon"
+                ),
+            ))
+        }
+    }
+}
+
+/// The angle at `o` of the triangle (o, a, b), in degrees.
+pub(crate) fn angle_deg(
+    o: crate::geom::Point,
+    a: crate::geom::Point,
+    b: crate::geom::Point,
+) -> f64 {
+    let u = [a[0] - o[0], a[1] - o[1]];
+    let w = [b[0] - o[0], b[1] - o[1]];
+    (u[0] * w[1] - u[1] * w[0])
+        .abs()
+        .atan2(u[0] * w[0] + u[1] * w[1])
+        .to_degrees()
+}

@@ -15,6 +15,9 @@ use crate::error::{Error, Result};
 /// `results.csv` is byte-identical from run to run.
 pub const VOLATILE_COLUMNS: &[&str] = &["time_median_s", "time_min_s", "time_max_s", "peak_rss_mb"];
 
+/// The `err` of a case that was not attempted (a mesher that cannot take the input).
+pub const NOT_RUN: &str = "not run: the mesher does not keep input segments";
+
 /// One dataset × mesher case. `None` fields are written as empty cells (pandas reads NaN).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Row {

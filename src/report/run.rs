@@ -10,7 +10,7 @@ use std::time::Duration;
 use super::plot::{self, AngleSeries, ScalingSeries};
 use super::progress::Progress;
 use super::readme::{self, Artifacts, Picture, RunFacts};
-use super::row::{one_line, write_csv, Row, COLUMNS};
+use super::row::{one_line, write_csv, Row, COLUMNS, NOT_RUN};
 use super::stats::Timing;
 use super::table1::{self, paper_row, MaxAngleRow, MAX_ANGLE_COLUMNS};
 use super::{case_params, clear_generated, ReportOptions, REFERENCES, REFERENCE_MIN_ANGLE};
@@ -242,7 +242,7 @@ fn run_case(
         mesh: None,
     };
     if input.has_segments() && !mesher.supports_segments() {
-        outcome.row.err = "not run: the mesher does not keep input segments".into();
+        outcome.row.err = NOT_RUN.into();
         return outcome;
     }
 
@@ -406,7 +406,7 @@ fn run_max_angle(
         err: String::new(),
     };
     if input.has_segments() && !mesher.supports_segments() {
-        row.err = "not run: the mesher does not keep input segments".into();
+        row.err = NOT_RUN.into();
         return row;
     }
     match maxangle::max_angle(

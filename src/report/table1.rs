@@ -10,7 +10,7 @@ use std::fmt::Write as _;
 
 use serde::Serialize;
 
-use super::row::{one_line, Row};
+use super::row::{one_line, Row, NOT_RUN};
 
 /// One figure of the paper's Table 1, as printed there.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -245,6 +245,9 @@ fn row_cell(rows: &[Row], dataset: &str, mesher: &str) -> String {
     let Some(r) = find_row(rows, dataset, mesher) else {
         return "not run".to_string();
     };
+    if r.err == NOT_RUN {
+        return "not run (no segments)".to_string();
+    }
     let mut text = match (r.triangles, r.min_angle) {
         (Some(t), Some(a)) => format!("{t} at {a:.2}°{}", time_text(r.time_median_s)),
         (Some(t), None) => format!("{t}{}", time_text(r.time_median_s)),
@@ -270,6 +273,9 @@ fn max_angle_cell(max_angles: &[MaxAngleRow], dataset: &str, mesher: &str) -> St
     else {
         return "not run".to_string();
     };
+    if m.err == NOT_RUN {
+        return "not run (no segments)".to_string();
+    }
     if !m.err.is_empty() {
         return format!("failed: {}", short(&m.err));
     }
@@ -424,6 +430,15 @@ mod tests {
         let text = String::from_utf8(w.into_inner().unwrap()).unwrap();
         let header: Vec<&str> = text.lines().next().unwrap().split(',').collect();
         assert_eq!(header, MAX_ANGLE_COLUMNS);
+    }
+
+    #[test]
+    fn a_mesher_without_segments_is_not_run_on_imr() {
+        let mut r = Row::empty("imr", 200, "rhomb", "1");
+        r.err = NOT_RUN.into();
+        let md = render(&[r], &[], &["rhomb".into()], &[], 30.0);
+        let line = md.lines().find(|l| l.starts_with("| IMR-letters")).unwrap();
+        assert!(line.ends_with("| not run (no segments) |"), "{line}");
     }
 
     #[test]

@@ -174,26 +174,31 @@ fn draw_angles<DB: DrawingBackend>(
 ) -> DrawResult<DB> {
     root.fill(&WHITE)?;
     let fractions: Vec<Vec<f64>> = series.iter().map(AngleSeries::fractions).collect();
-    let peak = fractions.iter().flatten().copied().fold(0.0_f64, f64::max);
-    let y_top = if peak > 0.0 { peak * 1.1 } else { 1.0 };
+    // A log axis: the hexagon meshers put most angles in a few bins, and a linear axis would
+    // flatten every refinement mesher's curve against zero. Empty bins sit on the floor.
+    let (floor, y_top) = log_range(&fractions);
     let mut chart = ChartBuilder::on(&root)
         .caption(title, (FONT, 22))
         .margin(12)
         .x_label_area_size(45)
         .y_label_area_size(70)
-        .build_cartesian_2d(0f64..180f64, 0f64..y_top)?;
+        .build_cartesian_2d(0f64..180f64, (floor..y_top).log_scale())?;
     chart
         .configure_mesh()
         .x_desc("angle (degrees, 1° bins)")
-        .y_desc("fraction of all angles")
+        .y_desc("fraction of all angles (log; empty bins at the bottom)")
         .x_labels(19)
         .x_label_formatter(&|x| format!("{x:.0}"))
+        .y_label_formatter(&|v| format!("{v:.0e}"))
         .label_style((FONT, 14))
         .axis_desc_style((FONT, 16))
         .draw()?;
     for (s, f) in series.iter().zip(&fractions) {
         let color = mesher_color(&s.mesher);
-        let points = f.iter().enumerate().map(|(i, &v)| (i as f64 + 0.5, v));
+        let points = f
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| (i as f64 + 0.5, v.max(floor)));
         chart
             .draw_series(LineSeries::new(points, color.stroke_width(2)))?
             .label(legend_label(s))
@@ -202,7 +207,7 @@ fn draw_angles<DB: DrawingBackend>(
             });
         for &b in &s.bounds {
             chart.draw_series(DashedLineSeries::new(
-                vec![(b, 0.0), (b, y_top)],
+                vec![(b, floor), (b, y_top)],
                 6,
                 4,
                 color.stroke_width(1),
@@ -217,6 +222,17 @@ fn draw_angles<DB: DrawingBackend>(
         .position(SeriesLabelPosition::UpperRight)
         .draw()?;
     root.present()
+}
+
+/// The y range of the angle plot: from below the smallest non-empty bin to above the peak.
+fn log_range(fractions: &[Vec<f64>]) -> (f64, f64) {
+    let values = || fractions.iter().flatten().copied().filter(|&v| v > 0.0);
+    let low = values().fold(f64::INFINITY, f64::min);
+    let peak = values().fold(0.0_f64, f64::max);
+    if !low.is_finite() || peak <= 0.0 {
+        return (1e-4, 1.0);
+    }
+    ((low / 2.0).max(1e-9), (peak * 2.0).min(1.0))
 }
 
 fn legend_label(s: &AngleSeries) -> String {
@@ -369,6 +385,15 @@ mod tests {
             bounds: vec![],
         };
         assert!(z.fractions().iter().all(|&v| v == 0.0));
+    }
+
+    #[test]
+    fn log_range_spans_the_smallest_bin_and_the_peak() {
+        let (lo, hi) = log_range(&[vec![0.0, 0.001, 0.5], vec![0.25, 0.0]]);
+        assert_eq!((lo, hi), (0.0005, 1.0));
+        let (lo, hi) = log_range(&[vec![0.0, 0.01, 0.1]]);
+        assert_eq!((lo, hi), (0.005, 0.2));
+        assert_eq!(log_range(&[vec![0.0; 3]]), (1e-4, 1.0));
     }
 
     #[test]

@@ -233,8 +233,9 @@ pub fn render(
 
     md.push_str("\n## Angle distributions\n\n");
     md.push_str(
-        "Each curve is the fraction of all triangle angles in each 1° bin for one mesher; the \
-         dashed vertical lines in the mesher's colour are the bounds it promises. A curve \
+        "Each curve is the fraction of all triangle angles in each 1° bin for one mesher, on a \
+         log axis so that both the template meshers' spikes and the refinement meshers' \
+         spread stay visible (empty bins lie on the bottom edge); the dashed vertical lines in the mesher's colour are the bounds it promises. A curve \
          that starts left of its lower line or ends right of its upper line breaks a bound. \
          The hexagon meshers' angles cluster at the few angles of their templates (60°, and \
          43.9°/46.1°/90° for the extended refinement); refinement meshers spread between the \

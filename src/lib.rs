@@ -8,6 +8,7 @@ pub mod cli;
 pub mod datasets;
 pub mod error;
 pub mod geom;
+pub mod hex;
 pub mod io;
 pub mod isolate;
 pub mod maxangle;

@@ -1,0 +1,281 @@
+//! Classification of full hexagons, paper 000 Sec. 5.1: by their fins (MOVED_CENTER_1/2/3,
+//! SUBDIVIDE) with left, right and top neighbours, and, without fins, by the input points
+//! around them (OCCUPIED_1/2, FIXED_CENTER_IN_RING, MOVED_CENTER_IN_RING, MOVED_CENTER_4,
+//! FIXED_CENTER_REGULAR).
+
+use crate::geom::{dist2, Point};
+use crate::hex::lattice::{FxHashMap, Key};
+use crate::hex::refine::is_fin;
+use crate::hex::subdivision::Hierarchy;
+
+/// The classes of Sec. 5.1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Class {
+    MovedCenter1,
+    MovedCenter2,
+    MovedCenter3,
+    Subdivide,
+    Occupied1,
+    Occupied2,
+    FixedCenterInRing,
+    MovedCenterInRing,
+    MovedCenter4,
+    FixedCenterRegular,
+}
+
+impl Class {
+    /// The paper's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Class::MovedCenter1 => "MOVED_CENTER_1",
+            Class::MovedCenter2 => "MOVED_CENTER_2",
+            Class::MovedCenter3 => "MOVED_CENTER_3",
+            Class::Subdivide => "SUBDIVIDE",
+            Class::Occupied1 => "OCCUPIED_1",
+            Class::Occupied2 => "OCCUPIED_2",
+            Class::FixedCenterInRing => "FIXED_CENTER_IN_RING",
+            Class::MovedCenterInRing => "MOVED_CENTER_IN_RING",
+            Class::MovedCenter4 => "MOVED_CENTER_4",
+            Class::FixedCenterRegular => "FIXED_CENTER_REGULAR",
+        }
+    }
+
+    /// FIXED_CENTER_x: the centre stays where the lattice puts it.
+    pub fn is_fixed(self) -> bool {
+        matches!(self, Class::FixedCenterInRing | Class::FixedCenterRegular)
+    }
+
+    /// MOVED_CENTER_[123] (a hexagon with fins).
+    pub fn has_fins(self) -> bool {
+        matches!(
+            self,
+            Class::MovedCenter1 | Class::MovedCenter2 | Class::MovedCenter3 | Class::Subdivide
+        )
+    }
+}
+
+/// The fins of a full hexagon as one run of consecutive directions `first, first + 1, …`
+/// (mod 6), `len` long. The left neighbour lies in direction `first - 1`, the right one in
+/// `first + len`, and for three fins the top neighbour in `first + 4`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct FinStrip {
+    pub first: usize,
+    pub len: usize,
+}
+
+impl FinStrip {
+    pub fn left(self) -> usize {
+        (self.first + 5) % 6
+    }
+
+    pub fn right(self) -> usize {
+        (self.first + self.len) % 6
+    }
+
+    pub fn top(self) -> usize {
+        (self.first + 4) % 6
+    }
+}
+
+/// The directions in which the full leaf `key` has fins, as a bit mask.
+pub fn fin_mask(h: &Hierarchy, key: Key) -> u8 {
+    (0..6)
+        .filter(|&d| is_fin(h, key.edge_child(d)))
+        .fold(0u8, |m, d| m | (1 << d))
+}
+
+/// The mask as one cyclic run of 1 to 5 directions, or `None` (no fins, all six, or several
+/// runs: the hexagon is of type SUBDIVIDE).
+pub fn fin_strip(mask: u8) -> Option<FinStrip> {
+    let len = mask.count_ones() as usize;
+    if len == 0 || len == 6 {
+        return None;
+    }
+    let first = (0..6).find(|&d| mask & (1 << d) != 0 && mask & (1 << ((d + 5) % 6)) == 0)?;
+    let run = (0..6)
+        .take_while(|&t| mask & (1 << ((first + t) % 6)) != 0)
+        .count();
+    (run == len).then_some(FinStrip { first, len })
+}
+
+/// What the rings around the occupied hexagons ask of a hexagon (Sec. 5.1).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Role {
+    /// FIXED_CENTER_IN_RING.
+    Fixed,
+    /// MOVED_CENTER_IN_RING of the OCCUPIED_2 hexagon `owner`, shifted by `shift` (Sec. 5.4).
+    Moved { owner: Key, shift: Point },
+}
+
+/// The ring roles of all hexagons around occupied hexagons, and the occupied hexagons whose
+/// rings collide with another point's rings (they must be subdivided).
+#[derive(Debug, Clone, Default)]
+pub struct Rings {
+    pub roles: FxHashMap<Key, Role>,
+    pub occupied: FxHashMap<Key, Class>,
+    pub conflicts: Vec<Key>,
+}
+
+/// The cells at lattice distance exactly `radius` (1 or 2) from `key`, inside the domain.
+pub fn ring(key: Key, radius: i64) -> Vec<Key> {
+    let mut out = Vec::new();
+    for di in -radius..=radius {
+        for dj in -radius..=radius {
+            let dist = di.abs().max(dj.abs()).max((di + dj).abs());
+            if dist == radius {
+                let c = Key::new(key.k, key.i + di, key.j + dj);
+                if c.inside() {
+                    out.push(c);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// OCCUPIED_1 when the point lies in the (closed) half-sized hexagon, else OCCUPIED_2.
+pub fn occupied_class(h: &Hierarchy, key: Key, p: Point) -> Class {
+    if h.closed_contains(key.central_child(), p) {
+        Class::Occupied1
+    } else {
+        Class::Occupied2
+    }
+}
+
+/// Half the vector from the centre of an OCCUPIED_2 hexagon to its corner nearest the point
+/// (Sec. 5.4, "Centers of MOVED_CENTER_IN_RING-hexagons"); ties go to the lower corner index.
+pub fn ring_shift(h: &Hierarchy, key: Key, p: Point) -> Point {
+    let c = h.lattice.center(key);
+    let corners = h.lattice.corners(key);
+    let mut best = 0;
+    for m in 1..6 {
+        if dist2(corners[m], p) < dist2(corners[best], p) {
+            best = m;
+        }
+    }
+    [
+        (corners[best][0] - c[0]) / 2.0,
+        (corners[best][1] - c[1]) / 2.0,
+    ]
+}
+
+/// Builds the rings of every occupied hexagon (which must be full leaves holding one point).
+pub fn rings(h: &Hierarchy) -> Rings {
+    let mut r = Rings::default();
+    let occupied = h.occupied_sorted();
+    for &key in &occupied {
+        let p = h.points[h.occupants(key)[0] as usize];
+        r.occupied.insert(key, occupied_class(h, key, p));
+    }
+    let conflict = |r: &mut Rings, a: Key, b: Key| {
+        r.conflicts.push(a);
+        r.conflicts.push(b);
+    };
+    for &key in &occupied {
+        let p = h.points[h.occupants(key)[0] as usize];
+        let class = r.occupied[&key];
+        let mut wanted: Vec<(Key, Role)> = Vec::new();
+        let first = match class {
+            Class::Occupied1 => Role::Fixed,
+            _ => Role::Moved {
+                owner: key,
+                shift: ring_shift(h, key, p),
+            },
+        };
+        wanted.extend(ring(key, 1).into_iter().map(|c| (c, first)));
+        if class == Class::Occupied2 {
+            wanted.extend(ring(key, 2).into_iter().map(|c| (c, Role::Fixed)));
+        }
+        for (cell, role) in wanted {
+            if r.occupied.contains_key(&cell) {
+                conflict(&mut r, key, cell);
+                continue;
+            }
+            match (r.roles.get(&cell).copied(), role) {
+                (None, _) => {
+                    r.roles.insert(cell, role);
+                }
+                (Some(Role::Fixed), Role::Fixed) => {}
+                (Some(Role::Moved { owner, .. }), _)
+                | (Some(Role::Fixed), Role::Moved { owner, .. }) => {
+                    // Two rings disagree about this centre: the moved ring of one point meets
+                    // the ring of another (Sec. 6.3 keeps OCCUPIED_2 hexagons three apart).
+                    let other = if owner == key {
+                        ring_owner_fixed(&occupied, cell, key)
+                    } else {
+                        owner
+                    };
+                    conflict(&mut r, key, other);
+                }
+            }
+        }
+    }
+    r.conflicts.sort();
+    r.conflicts.dedup();
+    r
+}
+
+/// An occupied hexagon other than `me` within two cells of `cell` (whose fixed ring claimed it).
+fn ring_owner_fixed(occupied: &[Key], cell: Key, me: Key) -> Key {
+    occupied
+        .iter()
+        .copied()
+        .find(|&o| {
+            o != me && o.k == cell.k && {
+                let (di, dj) = (o.i - cell.i, o.j - cell.j);
+                di.abs().max(dj.abs()).max((di + dj).abs()) <= 2
+            }
+        })
+        .unwrap_or(me)
+}
+
+/// The class of a full leaf.
+pub fn classify(h: &Hierarchy, rings: &Rings, key: Key) -> (Class, Option<FinStrip>) {
+    let mask = fin_mask(h, key);
+    if mask != 0 {
+        return match fin_strip(mask) {
+            Some(s) if s.len == 1 => (Class::MovedCenter1, Some(s)),
+            Some(s) if s.len == 2 => (Class::MovedCenter2, Some(s)),
+            Some(s) if s.len == 3 => (Class::MovedCenter3, Some(s)),
+            _ => (Class::Subdivide, None),
+        };
+    }
+    if let Some(&c) = rings.occupied.get(&key) {
+        return (c, None);
+    }
+    match rings.roles.get(&key) {
+        Some(Role::Fixed) => (Class::FixedCenterInRing, None),
+        Some(Role::Moved { .. }) => (Class::MovedCenterInRing, None),
+        None => (Class::FixedCenterRegular, None),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_run_of_consecutive_fins_is_a_strip_even_across_direction_zero() {
+        assert_eq!(fin_strip(0b000001), Some(FinStrip { first: 0, len: 1 }));
+        assert_eq!(fin_strip(0b100001), Some(FinStrip { first: 5, len: 2 }));
+        assert_eq!(fin_strip(0b000111), Some(FinStrip { first: 0, len: 3 }));
+        let s = fin_strip(0b110000).expect("a strip");
+        assert_eq!((s.left(), s.right()), (3, 0));
+        let t = fin_strip(0b000111).expect("a strip");
+        assert_eq!(t.top(), 4);
+    }
+
+    #[test]
+    fn split_runs_no_fins_and_six_fins_are_not_strips() {
+        assert_eq!(fin_strip(0), None);
+        assert_eq!(fin_strip(0b000101), None);
+        assert_eq!(fin_strip(0b111111), None);
+    }
+
+    #[test]
+    fn rings_have_six_and_twelve_cells_inside_the_domain() {
+        let key = Key::new(4, 1, 2);
+        assert_eq!(ring(key, 1).len(), 6);
+        assert_eq!(ring(key, 2).len(), 12);
+    }
+}

@@ -1,0 +1,375 @@
+//! The integer lattice behind the hexagon hierarchy (DESIGN.md "One way to see the hexagon
+//! hierarchy"; paper 000 Sec. 3.1): a hexagon of level k is the cell of lattice point (i, j)
+//! with centre o + r_k·(i·u + j·v), r_k = r_0/2^k, u = (3/2, √3/2), v = (0, √3).
+//!
+//! Every coordinate the mesher constructs (centres and cell corners) goes through one formula
+//! on a normalised integer key, so the same geometric point always gets the same f64 bits: two
+//! cells sharing a corner share it bit for bit, and exact predicates on constructed corners then
+//! see a tiling without gaps or overlaps.
+
+use std::hash::{BuildHasherDefault, Hasher};
+
+use crate::geom::{Hexagon, Point};
+
+/// Deepest level the mesher constructs. Lattice coordinates of level k need k + 2 bits, and
+/// they must stay exact in an f64 mantissa (53 bits) when a position is computed.
+pub const MAX_LEVEL: u8 = 50;
+
+/// The six lattice directions, counter-clockwise, starting at 30° (the neighbour across the
+/// upper-right edge of a flat-topped hexagon).
+pub const DIRS: [(i64, i64); 6] = [(1, 0), (0, 1), (-1, 1), (-1, 0), (0, -1), (1, -1)];
+
+/// A lattice cell: the hexagon of level `k` centred at lattice point (i, j).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Key {
+    pub k: u8,
+    pub i: i64,
+    pub j: i64,
+}
+
+impl Key {
+    pub const ROOT: Key = Key { k: 0, i: 0, j: 0 };
+
+    pub fn new(k: u8, i: i64, j: i64) -> Key {
+        Key { k, i, j }
+    }
+
+    /// The same-level neighbour in direction `d` (an index into `DIRS`).
+    pub fn neighbor(self, d: usize) -> Key {
+        let (di, dj) = DIRS[d];
+        Key::new(self.k, self.i + di, self.j + dj)
+    }
+
+    /// The central child: the hexagon scaled to half size (Sec. 3.1).
+    pub fn central_child(self) -> Key {
+        Key::new(self.k + 1, 2 * self.i, 2 * self.j)
+    }
+
+    /// The child cell at the midpoint of edge `d`: a semi-hexagon of this hexagon, or a full
+    /// hexagon when the neighbour across that edge is subdivided too.
+    pub fn edge_child(self, d: usize) -> Key {
+        let (di, dj) = DIRS[d];
+        Key::new(self.k + 1, 2 * self.i + di, 2 * self.j + dj)
+    }
+
+    /// The cells a subdivision of `self` creates: the central child, then the six edge
+    /// children in direction order.
+    pub fn children(self) -> [Key; 7] {
+        let mut out = [self.central_child(); 7];
+        for (d, slot) in out.iter_mut().skip(1).enumerate() {
+            *slot = self.edge_child(d);
+        }
+        out
+    }
+
+    /// The hexagons whose subdivision creates this cell: one for a central child (both
+    /// coordinates even), two for an edge child (the hexagons sharing the edge whose midpoint
+    /// is this cell's centre), none for the root.
+    pub fn parents(self) -> Parents {
+        if self.k == 0 {
+            return Parents::None;
+        }
+        let k = self.k - 1;
+        let (ei, ej) = (self.i.rem_euclid(2), self.j.rem_euclid(2));
+        if ei == 0 && ej == 0 {
+            return Parents::Central(Key::new(k, self.i / 2, self.j / 2));
+        }
+        // The direction d with (i, j) - d even: parity (1,0) -> (1,0), (0,1) -> (0,1),
+        // (1,1) -> (1,-1).
+        let (di, dj) = match (ei, ej) {
+            (1, 0) => (1, 0),
+            (0, 1) => (0, 1),
+            _ => (1, -1),
+        };
+        Parents::Edge(
+            Key::new(k, (self.i - di) / 2, (self.j - dj) / 2),
+            Key::new(k, (self.i + di) / 2, (self.j + dj) / 2),
+        )
+    }
+
+    /// The key of the coarsest cell with the same centre: centres repeat down a chain of
+    /// central children, and a dual vertex is identified by its position.
+    pub fn canonical(self) -> Key {
+        let mut key = self;
+        while key.k > 0 && key.i % 2 == 0 && key.j % 2 == 0 {
+            key = Key::new(key.k - 1, key.i / 2, key.j / 2);
+        }
+        key
+    }
+
+    /// The split counter of Sec. 3.2: how many times the hexagon that became this cell was
+    /// scaled to half size since it was created by a join (or since the root). A cell created
+    /// by joining two semi-hexagons has counter 0, and only such a cell may be broken again.
+    pub fn split_counter(self) -> u32 {
+        (self.k - self.canonical().k) as u32
+    }
+
+    /// True when the cell's centre lies in the closed bounding hexagon (the root). Exact: with
+    /// X = 3i and Y = i + 2j the centre is o + r_0/2^(k+1)·(X, √3·Y), and the root is
+    /// |Y| ≤ 2^k, |X| + |Y| ≤ 2^(k+1).
+    pub fn inside(self) -> bool {
+        let x = 3 * self.i as i128;
+        let y = self.i as i128 + 2 * self.j as i128;
+        let half = 1i128 << self.k;
+        y.abs() <= half && x.abs() + y.abs() <= 2 * half
+    }
+
+    /// True when the centre lies on the boundary of the root: a boundary semi-hexagon that the
+    /// paper treats as a virtual full hexagon (Fig. 1).
+    pub fn on_boundary(self) -> bool {
+        let x = 3 * self.i as i128;
+        let y = self.i as i128 + 2 * self.j as i128;
+        let half = 1i128 << self.k;
+        self.inside() && (y.abs() == half || x.abs() + y.abs() == 2 * half)
+    }
+}
+
+/// What `Key::parents` returns.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Parents {
+    None,
+    Central(Key),
+    Edge(Key, Key),
+}
+
+/// Offsets of the six cell corners (0°, 60°, …, 300°) in the (X, Y) coordinates of
+/// `Lattice::grid_point`, relative to the centre (3i, i + 2j).
+const CORNER_X: [i64; 6] = [2, 1, -1, -2, -1, 1];
+const CORNER_Y: [i64; 6] = [0, 1, 1, 0, -1, -1];
+
+/// Positions of lattice points of a given root hexagon.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Lattice {
+    pub origin: Point,
+    pub r0: f64,
+    /// r_0·√3, rounded once, so that every y coordinate is one product and one sum.
+    sqrt3_r0: f64,
+}
+
+impl Lattice {
+    pub fn new(root: Hexagon) -> Lattice {
+        Lattice {
+            origin: root.center,
+            r0: root.circumradius,
+            sqrt3_r0: root.circumradius * 3f64.sqrt(),
+        }
+    }
+
+    pub fn root(&self) -> Hexagon {
+        Hexagon {
+            center: self.origin,
+            circumradius: self.r0,
+        }
+    }
+
+    /// Circumradius of level k.
+    pub fn radius(&self, k: u8) -> f64 {
+        self.r0 * pow2(-(k as i32))
+    }
+
+    /// The point o + r_0/2^(k+1)·(X, √3·Y). The key is first reduced to its coarsest level so
+    /// that one geometric point always gives the same bits; the scaling by a power of two is
+    /// exact, leaving one rounding per product and one per sum. Level 0 with (X, Y) = (2, 0),
+    /// (1, 1), … reproduces `Hexagon::corners` bit for bit.
+    pub fn grid_point(&self, k: u8, x: i64, y: i64) -> Point {
+        let (mut k, mut x, mut y) = (k, x, y);
+        while k > 0 && x % 2 == 0 && y % 2 == 0 {
+            k -= 1;
+            x /= 2;
+            y /= 2;
+        }
+        let s = pow2(-(k as i32) - 1);
+        [
+            self.origin[0] + (self.r0 * x as f64) * s,
+            self.origin[1] + (self.sqrt3_r0 * y as f64) * s,
+        ]
+    }
+
+    /// The centre of a cell.
+    pub fn center(&self, key: Key) -> Point {
+        self.grid_point(key.k, 3 * key.i, key.i + 2 * key.j)
+    }
+
+    /// Corner `m` (at angle 60°·m) of a cell.
+    pub fn corner(&self, key: Key, m: usize) -> Point {
+        self.grid_point(
+            key.k,
+            3 * key.i + CORNER_X[m],
+            key.i + 2 * key.j + CORNER_Y[m],
+        )
+    }
+
+    /// The six corners of a cell, counter-clockwise from angle 0.
+    pub fn corners(&self, key: Key) -> [Point; 6] {
+        std::array::from_fn(|m| self.corner(key, m))
+    }
+
+    /// The lattice point of level k nearest to `p` in floating point (cube rounding). A guess
+    /// only: exact decisions are made on the constructed corners.
+    pub fn nearest(&self, k: u8, p: Point) -> Key {
+        let r = self.radius(k);
+        let qx = (p[0] - self.origin[0]) / r;
+        let qy = (p[1] - self.origin[1]) / r;
+        let fi = qx * (2.0 / 3.0);
+        let fj = qy / 3f64.sqrt() - fi / 2.0;
+        let fs = -fi - fj;
+        let (mut ri, mut rj, rs) = (fi.round(), fj.round(), fs.round());
+        let (di, dj, ds) = ((ri - fi).abs(), (rj - fj).abs(), (rs - fs).abs());
+        if di > dj && di > ds {
+            ri = -rj - rs;
+        } else if dj > ds {
+            rj = -ri - rs;
+        }
+        // Saturating float-to-int casts keep absurd inputs from wrapping; callers check.
+        Key::new(k, ri as i64, rj as i64)
+    }
+}
+
+/// 2^e for the exponents the lattice uses.
+fn pow2(e: i32) -> f64 {
+    f64::from_bits(((1023 + e) as u64) << 52)
+}
+
+/// A small multiplicative hasher (the Fx hash of rustc) for integer keys: the default SipHash
+/// costs more than the rest of a lookup. Hash order never reaches the output.
+#[derive(Default, Clone, Copy)]
+pub struct FxHasher(u64);
+
+impl FxHasher {
+    fn add(&mut self, word: u64) {
+        self.0 = (self.0.rotate_left(5) ^ word).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+    }
+}
+
+impl Hasher for FxHasher {
+    fn write(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.add(b as u64);
+        }
+    }
+
+    fn write_u8(&mut self, n: u8) {
+        self.add(n as u64);
+    }
+
+    fn write_u64(&mut self, n: u64) {
+        self.add(n);
+    }
+
+    fn write_i64(&mut self, n: i64) {
+        self.add(n as u64);
+    }
+
+    fn finish(&self) -> u64 {
+        // The table indexes by the low bits, which a multiplication leaves poorly mixed.
+        self.0.rotate_left(26)
+    }
+}
+
+pub type FxBuild = BuildHasherDefault<FxHasher>;
+pub type FxHashMap<K, V> = std::collections::HashMap<K, V, FxBuild>;
+pub type FxHashSet<K> = std::collections::HashSet<K, FxBuild>;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit() -> Lattice {
+        Lattice::new(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        })
+    }
+
+    #[test]
+    fn root_corners_match_hexagon_corners_bit_for_bit() {
+        let hex = Hexagon {
+            center: [0.3, -7.1],
+            circumradius: 2.7,
+        };
+        let lat = Lattice::new(hex);
+        assert_eq!(lat.corners(Key::ROOT), hex.corners());
+    }
+
+    #[test]
+    fn a_shared_corner_has_the_same_bits_from_every_cell_and_level() {
+        let lat = Lattice::new(Hexagon {
+            center: [0.1, 0.2],
+            circumradius: 0.7,
+        });
+        // Corner 0 of (k, i, j) is corner 2 of its neighbour in direction 5 and corner 4 of its
+        // neighbour in direction 0.
+        let key = Key::new(3, 2, -1);
+        assert_eq!(lat.corner(key, 0), lat.corner(key.neighbor(5), 2));
+        assert_eq!(lat.corner(key, 0), lat.corner(key.neighbor(0), 4));
+        // A corner of a level-k cell is a corner of its edge children at level k + 1.
+        assert_eq!(lat.corner(key, 1), lat.corner(key.edge_child(0), 2));
+        assert_eq!(lat.center(key), lat.center(key.central_child()));
+    }
+
+    #[test]
+    fn parents_of_edge_children_are_the_two_hexagons_sharing_the_edge() {
+        let key = Key::new(4, -3, 5);
+        for d in 0..6 {
+            match key.edge_child(d).parents() {
+                Parents::Edge(a, b) => {
+                    let mut got = [a, b];
+                    got.sort();
+                    let mut want = [key, key.neighbor(d)];
+                    want.sort();
+                    assert_eq!(got, want, "direction {d}");
+                }
+                other => panic!("edge child {d} has parents {other:?}"),
+            }
+        }
+        assert_eq!(key.central_child().parents(), Parents::Central(key));
+    }
+
+    #[test]
+    fn inside_is_the_closed_root_hexagon() {
+        assert!(Key::ROOT.inside());
+        assert!((0..6).all(|d| !Key::ROOT.neighbor(d).inside()));
+        // Level 1: the six edge midpoints of the root lie on its boundary.
+        for d in 0..6 {
+            let c = Key::ROOT.edge_child(d);
+            assert!(c.inside() && c.on_boundary(), "edge child {d}");
+        }
+        // Cross-check against the geometry on a fine level.
+        let lat = unit();
+        for i in -20..=20 {
+            for j in -20..=20 {
+                let key = Key::new(3, i, j);
+                let c = lat.center(key);
+                let far = c[1].abs() > 3f64.sqrt() / 2.0 + 1e-9
+                    || 3f64.sqrt() * c[0].abs() + c[1].abs() > 3f64.sqrt() + 1e-9;
+                let near = c[1].abs() < 3f64.sqrt() / 2.0 - 1e-9
+                    && 3f64.sqrt() * c[0].abs() + c[1].abs() < 3f64.sqrt() - 1e-9;
+                if far {
+                    assert!(!key.inside(), "{key:?}");
+                }
+                if near {
+                    assert!(key.inside() && !key.on_boundary(), "{key:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn split_counter_counts_scalings_since_the_last_join() {
+        assert_eq!(Key::ROOT.split_counter(), 0);
+        assert_eq!(Key::new(2, 0, 0).split_counter(), 2);
+        assert_eq!(Key::new(3, 2, 0).split_counter(), 1);
+        assert_eq!(Key::new(3, 1, 0).split_counter(), 0);
+    }
+
+    #[test]
+    fn nearest_finds_the_cell_of_its_own_centre() {
+        let lat = unit();
+        for i in -6..=6 {
+            for j in -6..=6 {
+                let key = Key::new(4, i, j);
+                assert_eq!(lat.nearest(4, lat.center(key)), key);
+            }
+        }
+    }
+}

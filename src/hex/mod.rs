@@ -1,0 +1,181 @@
+//! The hexagonal Delaunay mesher of Sußner & Greiner, "Hexagonal Delaunay Triangulation"
+//! (IMR 2009, paper 000): an adaptive hexagon subdivision of the bounding hexagon (Sec. 3),
+//! refined around the input points (Sec. 4.1), whose dual is the mesh (Sec. 4.2).
+//!
+//! `hex-simple` is the simple refinement: every angle in [30°, 120°] (Sec. 4.3).
+//!
+//! - `lattice`: integer keys of hexagons, exact positions, the bounding-hexagon test.
+//! - `subdivision`: split, join, balancing, point location (Sec. 3).
+//! - `refine`: refinement rules 1–5 on a work list (Sec. 4.1).
+//! - `dual`: the dual triangle mesh (Sec. 4.2).
+//! - `picture`: SVG of the hexagons with the dual over them (Figs. 3, 4, 7).
+//! - `fuzz`: a seeded campaign that checks the promised bounds on random point sets.
+
+pub mod classify;
+pub mod dual;
+pub mod extended;
+pub mod fuzz;
+pub mod lattice;
+pub mod picture;
+pub mod refine;
+pub mod subdivision;
+
+use std::time::Instant;
+
+use crate::error::{Error, InputError, Result};
+use crate::geom::Point;
+use crate::mesh::{Pslg, TriMesh};
+use crate::mesher::{MeshRun, Mesher, Params};
+
+pub use dual::Placement;
+pub use fuzz::{fuzz_campaign, FuzzFailure, FuzzSummary};
+pub use lattice::{Key, Lattice};
+pub use picture::{write_hexagons_svg, write_hierarchy_svg};
+pub use refine::{insert_points, InsertError};
+pub use subdivision::{Cell, Hierarchy, Stop};
+
+/// The simple hexagonal mesher (Sec. 4): angles in [30°, 120°].
+#[derive(Debug, Clone, Copy, Default)]
+pub struct HexSimple;
+
+impl Mesher for HexSimple {
+    fn name(&self) -> &'static str {
+        "hex-simple"
+    }
+
+    fn version(&self) -> String {
+        format!("hexmesh {}", env!("CARGO_PKG_VERSION"))
+    }
+
+    fn settings(&self, params: &Params) -> String {
+        let mut s = String::from("simple refinement (Sec. 4), angles 30-120 deg");
+        if params.min_angle.is_some() || params.max_area.is_some() {
+            s.push_str("; min-angle and max-area ignored (fixed bounds)");
+        }
+        s
+    }
+
+    fn supports_segments(&self) -> bool {
+        false
+    }
+
+    fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        let start = Instant::now();
+        let (h, stop) = mesh_with_hierarchy(input, params)?;
+        let placement = if stop.is_none() {
+            Placement::Relocated
+        } else {
+            Placement::Plain
+        };
+        let mesh = dual::extract(&h, placement);
+        if let Some(t) = dual::first_inverted(&mesh) {
+            return Err(Error::mesher(
+                self.name(),
+                format!("internal error: dual triangle {t} is not counter-clockwise"),
+            ));
+        }
+        Ok(MeshRun {
+            mesh,
+            complete: stop.is_none(),
+            stop_reason: stop,
+            steps: h.steps,
+            elapsed: start.elapsed(),
+        })
+    }
+}
+
+/// Runs the simple refinement on a point set and returns the final hierarchy, with the reason
+/// it stopped early when a budget ran out. Errors: segments (not supported), points outside
+/// the bounding hexagon, points too close together for f64 (`InputError::Range`).
+pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<String>)> {
+    if input.has_segments() {
+        return Err(Error::mesher(
+            "hex-simple",
+            "input segments are not supported; give a point set",
+        ));
+    }
+    input.validate_input()?;
+    let root = input.bounding_hexagon();
+    if !(root.circumradius > 0.0 && root.circumradius.is_finite()) {
+        return Err(Error::mesher(
+            "hex-simple",
+            "the bounding hexagon has no positive finite radius",
+        ));
+    }
+    if let Some(i) = input
+        .points
+        .iter()
+        .position(|&p| !root.contains_strictly(p))
+    {
+        return Err(Error::mesher(
+            "hex-simple",
+            format!("point {i} does not lie strictly inside the bounding hexagon"),
+        ));
+    }
+    let mut h = Hierarchy::new(Lattice::new(root), input.points.clone(), params.budget);
+    match refine::refine_simple(&mut h) {
+        Ok(()) => Ok((h, None)),
+        Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),
+        Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
+    }
+}
+
+/// A finished `hex-simple` mesh that accepts further points and refines only around them
+/// (paper 000 Sec. 1 and 9). The bounding hexagon stays the one of the first input, so added
+/// points must lie strictly inside it.
+#[derive(Debug, Clone)]
+pub struct IncrementalHexSimple {
+    hierarchy: Hierarchy,
+}
+
+impl IncrementalHexSimple {
+    /// Meshes `input` (a point set) to completion; a budget that stops the first meshing is an
+    /// error here, since a partial hierarchy cannot take more points.
+    pub fn new(input: &Pslg, params: &Params) -> Result<IncrementalHexSimple> {
+        let (hierarchy, stop) = mesh_with_hierarchy(input, params)?;
+        match stop {
+            None => Ok(IncrementalHexSimple { hierarchy }),
+            Some(why) => Err(Error::mesher("hex-simple", why)),
+        }
+    }
+
+    /// Adds points and refines locally. Returns the vertex indices they got in `mesh()`.
+    pub fn insert(&mut self, points: &[Point]) -> Result<Vec<u32>> {
+        insert_points(&mut self.hierarchy, points).map_err(|e| match e {
+            InsertError::NonFinite { point } => Error::mesher(
+                "hex-simple",
+                format!("added point ({}, {}) is not finite", point[0], point[1]),
+            ),
+            InsertError::Outside { point } => Error::mesher(
+                "hex-simple",
+                format!(
+                    "added point ({}, {}) does not lie strictly inside the bounding hexagon",
+                    point[0], point[1]
+                ),
+            ),
+            InsertError::Duplicate { point, existing } => Error::mesher(
+                "hex-simple",
+                format!(
+                    "added point ({}, {}) duplicates point {existing}",
+                    point[0], point[1]
+                ),
+            ),
+            InsertError::Stopped(Stop::Budget(why)) => {
+                Error::mesher("hex-simple", format!("stopped by the {why}"))
+            }
+            InsertError::Stopped(Stop::Precision(detail)) => {
+                Error::input(InputError::Range { detail })
+            }
+        })
+    }
+
+    /// The current mesh: input point i (first the initial points, then the added ones in
+    /// order) is vertex i.
+    pub fn mesh(&self) -> TriMesh {
+        dual::extract(&self.hierarchy, Placement::Relocated)
+    }
+
+    pub fn hierarchy(&self) -> &Hierarchy {
+        &self.hierarchy
+    }
+}

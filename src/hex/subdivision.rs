@@ -1,0 +1,439 @@
+//! The adaptive hexagon hierarchy of paper 000 Sec. 3: split a full hexagon into a half-size
+//! hexagon and six semi-hexagons, join two semi-hexagons that meet at their long edges into a
+//! full hexagon (3.1), split counters (3.2, derived in `Key::split_counter`), and the balancing
+//! rule (3.3): the level difference of adjacent (semi-)hexagons never exceeds one.
+//!
+//! The state is the set of subdivided hexagons; whether a lattice cell is a full hexagon, a
+//! semi-hexagon (a fin of its unsubdivided parent) or not yet present follows from its parents
+//! (DESIGN.md). Cells whose centre lies outside the bounding hexagon count as subdivided, which
+//! makes the boundary semi-hexagons virtual full hexagons (Fig. 1).
+//!
+//! Point location rule: a point belongs to the cell reached by descending from the root. Inside
+//! a subdivided hexagon it goes to the child cell (central or edge) whose constructed hexagon
+//! contains it, tested exactly with `orient2d` on the bit-shared constructed corners (closed
+//! cells); a point on the boundary of several children goes to the one with the smallest
+//! (i, j) in lexicographic order. An edge child that is a semi-hexagon only receives points
+//! through its subdivided parent, so the half owned by the other parent is never assigned to it.
+
+use std::time::Instant;
+
+use crate::geom::{orient2d, Point};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, Lattice, Parents, MAX_LEVEL};
+use crate::mesher::Budget;
+
+/// What a lattice cell is in the current subdivision.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Cell {
+    /// The centre lies outside the bounding hexagon.
+    Outside,
+    /// Covered by a coarser hexagon: no hexagon of this cell exists.
+    Absent,
+    /// A semi-hexagon: the half of the cell inside `owner` (subdivided, or outside), which is a
+    /// fin of `fin_of`, the unsubdivided full hexagon across its long edge.
+    Semi { owner: Key, fin_of: Key },
+    /// A full hexagon (possibly a virtual one on the boundary).
+    Full { subdivided: bool },
+}
+
+/// Why the refinement stopped before it was done.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stop {
+    /// A budget ran out; the message names it.
+    Budget(String),
+    /// The points are too close together for the lattice (level or f64 precision limit).
+    Precision(String),
+}
+
+/// The hexagon hierarchy with the input points distributed over its leaves.
+#[derive(Debug, Clone)]
+pub struct Hierarchy {
+    pub lattice: Lattice,
+    pub points: Vec<Point>,
+    subdivided: FxHashSet<Key>,
+    /// Input points per leaf (full unsubdivided hexagon or semi-hexagon); only occupied leaves.
+    occupants: FxHashMap<Key, Vec<u32>>,
+    /// Cells whose rules must be re-examined.
+    pub(crate) work: Vec<Key>,
+    /// Hexagons subdivided since the log was last cleared (the extended rules re-examine the
+    /// cells around them).
+    pub(crate) log: Vec<Key>,
+    /// Subdivisions so far (the mesher's steps).
+    pub steps: u64,
+    /// Full hexagons that are leaves, inside the bounding hexagon (about the dual's vertices).
+    pub full_leaves: usize,
+    budget: Budget,
+    start: Instant,
+    /// The deepest level whose lattice positions f64 still separates.
+    level_limit: u8,
+}
+
+impl Hierarchy {
+    /// The root hexagon alone, holding every point. The caller has checked that each point lies
+    /// strictly inside `lattice.root()`.
+    pub fn new(lattice: Lattice, points: Vec<Point>, budget: Budget) -> Hierarchy {
+        let mut occupants =
+            FxHashMap::with_capacity_and_hasher(points.len() + 1, Default::default());
+        if !points.is_empty() {
+            occupants.insert(Key::ROOT, (0..points.len() as u32).collect());
+        }
+        // About seven subdivisions per point on uniform sets: reserving spares the rehashing of
+        // tables that outgrow the caches.
+        let expected = 8 * points.len() + 64;
+        Hierarchy {
+            level_limit: level_limit(&lattice),
+            lattice,
+            points,
+            subdivided: FxHashSet::with_capacity_and_hasher(expected, Default::default()),
+            occupants,
+            work: Vec::new(),
+            log: Vec::new(),
+            steps: 0,
+            full_leaves: 1,
+            budget,
+            start: Instant::now(),
+        }
+    }
+
+    /// True when the hexagon of `key` is subdivided, counting cells outside the root as
+    /// subdivided (they never constrain anything inside).
+    pub fn is_subdivided_or_outside(&self, key: Key) -> bool {
+        !key.inside() || self.subdivided.contains(&key)
+    }
+
+    pub fn is_subdivided(&self, key: Key) -> bool {
+        self.subdivided.contains(&key)
+    }
+
+    /// The subdivided hexagons, sorted.
+    pub fn subdivided_sorted(&self) -> Vec<Key> {
+        let mut v: Vec<Key> = self.subdivided.iter().copied().collect();
+        v.sort();
+        v
+    }
+
+    /// The input points assigned to a leaf.
+    pub fn occupants(&self, key: Key) -> &[u32] {
+        self.occupants.get(&key).map_or(&[], |v| v.as_slice())
+    }
+
+    /// The occupied leaves, sorted.
+    pub fn occupied_sorted(&self) -> Vec<Key> {
+        let mut v: Vec<Key> = self.occupants.keys().copied().collect();
+        v.sort();
+        v
+    }
+
+    pub fn is_occupied(&self, key: Key) -> bool {
+        self.occupants.contains_key(&key)
+    }
+
+    /// Appends point `p` to the input points and assigns it to `leaf` (which must be the leaf
+    /// `leaf_of(p)` names). Returns its index.
+    pub fn add_point(&mut self, leaf: Key, p: Point) -> u32 {
+        let id = self.points.len() as u32;
+        self.points.push(p);
+        self.occupants.entry(leaf).or_default().push(id);
+        id
+    }
+
+    /// What the cell `key` currently is.
+    pub fn cell(&self, key: Key) -> Cell {
+        if !key.inside() {
+            return Cell::Outside;
+        }
+        let full = |me: &Self| Cell::Full {
+            subdivided: me.subdivided.contains(&key),
+        };
+        match key.parents() {
+            Parents::None => full(self),
+            Parents::Central(p) => {
+                if self.subdivided.contains(&p) {
+                    full(self)
+                } else {
+                    Cell::Absent
+                }
+            }
+            Parents::Edge(a, b) => match (
+                self.is_subdivided_or_outside(a),
+                self.is_subdivided_or_outside(b),
+            ) {
+                (true, true) => full(self),
+                (true, false) => Cell::Semi {
+                    owner: a,
+                    fin_of: b,
+                },
+                (false, true) => Cell::Semi {
+                    owner: b,
+                    fin_of: a,
+                },
+                (false, false) => Cell::Absent,
+            },
+        }
+    }
+
+    /// True when `key` is a full hexagon that is not subdivided.
+    pub fn is_full_leaf(&self, key: Key) -> bool {
+        self.cell(key) == Cell::Full { subdivided: false }
+    }
+
+    /// Makes the cell `key` a full hexagon (or leaves it alone if outside or already full):
+    /// a semi-hexagon is joined by subdividing the hexagon it is a fin of; an absent cell
+    /// first needs its parents (Sec. 3.3, Fig. 2).
+    pub fn ensure_full(&mut self, key: Key) -> Result<(), Stop> {
+        match self.cell(key) {
+            Cell::Outside | Cell::Full { .. } => Ok(()),
+            Cell::Semi { fin_of, .. } => self.subdivide(fin_of),
+            Cell::Absent => match key.parents() {
+                Parents::None => Ok(()),
+                Parents::Central(p) => {
+                    self.ensure_full(p)?;
+                    self.subdivide(p)
+                }
+                Parents::Edge(a, b) => {
+                    for p in [a, b] {
+                        if !self.is_subdivided_or_outside(p) {
+                            self.ensure_full(p)?;
+                            self.subdivide(p)?;
+                        }
+                    }
+                    Ok(())
+                }
+            },
+        }
+    }
+
+    /// Splits the full hexagon `key` (Sec. 3.1). Balancing first (Sec. 3.3): every neighbour
+    /// is made a full hexagon, since a semi-hexagon beside the new semi-hexagons would differ
+    /// from them by two levels. Semi-hexagons of the new children that meet a subdivided
+    /// neighbour's semi-hexagon are joined implicitly (the cell becomes full). The points of
+    /// `key` move to its children.
+    pub fn subdivide(&mut self, key: Key) -> Result<(), Stop> {
+        if self.subdivided.contains(&key) || !key.inside() {
+            return Ok(());
+        }
+        self.check_budget(key)?;
+        for d in 0..6 {
+            self.ensure_full(key.neighbor(d))?;
+        }
+        if self.subdivided.contains(&key) {
+            return Ok(());
+        }
+        debug_assert_eq!(self.cell(key), Cell::Full { subdivided: false });
+        self.subdivided.insert(key);
+        self.steps += 1;
+        self.log.push(key);
+        // The central child replaces `key` as a leaf; each edge child that is now full joined.
+        for d in 0..6 {
+            let child = key.edge_child(d);
+            if child.inside() && self.is_subdivided_or_outside(key.neighbor(d)) {
+                self.full_leaves += 1;
+            }
+        }
+        if let Some(pts) = self.occupants.remove(&key) {
+            for p in pts {
+                let child = self.locate_child(key, self.points[p as usize]);
+                self.occupants.entry(child).or_default().push(p);
+            }
+        }
+        self.schedule_around(key);
+        Ok(())
+    }
+
+    /// Queues the cells whose rules may have changed: the seven children, the ring of cells of
+    /// the next level around them, and the neighbours of `key`.
+    fn schedule_around(&mut self, key: Key) {
+        let c = key.central_child();
+        for di in -2i64..=2 {
+            for dj in -2i64..=2 {
+                if (di + dj).abs() <= 2 {
+                    self.work.push(Key::new(c.k, c.i + di, c.j + dj));
+                }
+            }
+        }
+        for d in 0..6 {
+            self.work.push(key.neighbor(d));
+        }
+    }
+
+    fn check_budget(&self, key: Key) -> Result<(), Stop> {
+        if key.k + 1 > self.level_limit {
+            return Err(Stop::Precision(format!(
+                "the input points are too close together for this bounding hexagon: refining \
+                 them needs hexagons below level {} (radius {:e}), which f64 cannot place apart",
+                self.level_limit,
+                self.lattice.radius(self.level_limit)
+            )));
+        }
+        if let Some(max) = self.budget.max_steps {
+            if self.steps >= max {
+                return Err(Stop::Budget(format!("step budget of {max} subdivisions")));
+            }
+        }
+        if let Some(max) = self.budget.max_vertices {
+            if self.full_leaves >= max {
+                return Err(Stop::Budget(format!("vertex budget of {max}")));
+            }
+        }
+        if let Some(max) = self.budget.max_time {
+            if self.steps % 256 == 0 && self.start.elapsed() > max {
+                return Err(Stop::Budget(format!("time budget of {max:?}")));
+            }
+        }
+        Ok(())
+    }
+
+    /// The child cell of the subdivided hexagon `parent` that `p` belongs to (module docs).
+    pub fn locate_child(&self, parent: Key, p: Point) -> Key {
+        // Children outside the bounding hexagon never hold points: a point that rounding puts
+        // just inside the constructed root edge still belongs to the boundary cell there.
+        let mut children = parent.children().to_vec();
+        children.retain(|c| c.inside());
+        let guess = self.lattice.nearest(parent.k + 1, p);
+        if children.contains(&guess) && self.strictly_inside(guess, p) {
+            return guess;
+        }
+        let mut best: Option<Key> = None;
+        for &c in &children {
+            if self.closed_contains(c, p) && best.is_none_or(|b| (c.i, c.j) < (b.i, b.j)) {
+                best = Some(c);
+            }
+        }
+        // Rounding of the constructed corners can leave a sliver of the parent outside every
+        // constructed child; the nearest centre decides there (ties to the lower (i, j)).
+        best.unwrap_or_else(|| {
+            let mut v = children;
+            v.sort_by(|a, b| {
+                let da = crate::geom::dist2(self.lattice.center(*a), p);
+                let db = crate::geom::dist2(self.lattice.center(*b), p);
+                da.total_cmp(&db).then((a.i, a.j).cmp(&(b.i, b.j)))
+            });
+            v[0]
+        })
+    }
+
+    fn strictly_inside(&self, key: Key, p: Point) -> bool {
+        let c = self.lattice.corners(key);
+        (0..6).all(|m| orient2d(c[m], c[(m + 1) % 6], p) > 0.0)
+    }
+
+    /// True when `p` lies in the closed constructed hexagon of cell `key` (exact).
+    pub fn closed_contains(&self, key: Key, p: Point) -> bool {
+        let c = self.lattice.corners(key);
+        (0..6).all(|m| orient2d(c[m], c[(m + 1) % 6], p) >= 0.0)
+    }
+
+    /// The leaf holding `p`, by the descent of the module docs. Used by tests and pictures.
+    pub fn leaf_of(&self, p: Point) -> Key {
+        let mut key = Key::ROOT;
+        while self.subdivided.contains(&key) {
+            key = self.locate_child(key, p);
+            if !matches!(self.cell(key), Cell::Full { .. }) {
+                break;
+            }
+        }
+        key
+    }
+
+    /// Every leaf inside the root: full unsubdivided hexagons and semi-hexagons, sorted.
+    pub fn leaves(&self) -> Vec<(Key, Cell)> {
+        let mut out = Vec::new();
+        let mut stack = vec![Key::ROOT];
+        while let Some(key) = stack.pop() {
+            if !self.subdivided.contains(&key) {
+                continue;
+            }
+            for c in key.children() {
+                match self.cell(c) {
+                    Cell::Full { subdivided: true } => stack.push(c),
+                    Cell::Full { subdivided: false } => out.push((c, self.cell(c))),
+                    Cell::Semi { owner, .. } if owner == key => out.push((c, self.cell(c))),
+                    _ => {}
+                }
+            }
+        }
+        if !self.subdivided.contains(&Key::ROOT) {
+            out.push((Key::ROOT, self.cell(Key::ROOT)));
+        }
+        out.sort_by_key(|e| e.0);
+        out.dedup_by_key(|e| e.0);
+        out
+    }
+}
+
+impl Hierarchy {
+    /// Checks the structural invariants every state keeps (a sanity check for tests and the
+    /// fuzzer): each subdivided hexagon is a full hexagon whose neighbours inside the bounding
+    /// hexagon are full (the balancing rule of Sec. 3.3), and each point is held by the leaf
+    /// the point-location rule gives it. Returns the first violation.
+    pub fn check_invariants(&self) -> Result<(), String> {
+        for key in self.subdivided_sorted() {
+            if !matches!(self.cell(key), Cell::Full { .. }) {
+                return Err(format!("subdivided {key:?} is not a full hexagon"));
+            }
+            for d in 0..6 {
+                let n = key.neighbor(d);
+                if !matches!(self.cell(n), Cell::Full { .. } | Cell::Outside) {
+                    return Err(format!(
+                        "subdivided {key:?} has neighbour {n:?} that is {:?}",
+                        self.cell(n)
+                    ));
+                }
+            }
+        }
+        for key in self.occupied_sorted() {
+            for &p in self.occupants(key) {
+                let leaf = self.leaf_of(self.points[p as usize]);
+                if leaf != key {
+                    return Err(format!("point {p} is held by {key:?}, located in {leaf:?}"));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks the end state of the simple refinement (Sec. 4.1): every occupied hexagon is a
+    /// full hexagon holding one point, surrounded by full, unsubdivided, unoccupied hexagons.
+    pub fn check_refined(&self) -> Result<(), String> {
+        for key in self.occupied_sorted() {
+            if !self.is_full_leaf(key) {
+                return Err(format!("occupied {key:?} is {:?}", self.cell(key)));
+            }
+            if self.occupants(key).len() != 1 {
+                return Err(format!(
+                    "{key:?} holds {} points",
+                    self.occupants(key).len()
+                ));
+            }
+            for d in 0..6 {
+                let n = key.neighbor(d);
+                if !n.inside() {
+                    continue;
+                }
+                if !self.is_full_leaf(n) || self.is_occupied(n) {
+                    return Err(format!(
+                        "occupied {key:?} has neighbour {n:?}: {:?}, occupied {}",
+                        self.cell(n),
+                        self.is_occupied(n)
+                    ));
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The deepest level whose triangles f64 can still place to the angle tolerance of the
+/// checks (DESIGN.md "Checks": 1e-6°). A constructed coordinate o + (r_0·X)·2^-(k+1) carries an
+/// error of at most E = (|o| + 3·r_0)·2^-53; an angle between two edges of length at least r_k
+/// moves by at most 4·√2·E/r_k. Keeping that below 1.5e-8 rad (0.86e-6°) bounds the level.
+/// Inputs that need deeper hexagons are refused rather than meshed with wrong angles.
+pub fn level_limit(lattice: &Lattice) -> u8 {
+    let e = (lattice.origin[0].abs().max(lattice.origin[1].abs()) + 3.0 * lattice.r0)
+        * (f64::EPSILON / 2.0);
+    let min_radius = 4.0 * std::f64::consts::SQRT_2 * e / 1.5e-8;
+    let mut k = 0u8;
+    while k < MAX_LEVEL && lattice.radius(k + 1) >= min_radius {
+        k += 1;
+    }
+    k
+}

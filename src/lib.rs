@@ -16,6 +16,7 @@ pub mod mesh;
 pub mod mesher;
 pub mod quality;
 pub mod reference;
+pub mod refine;
 pub mod registry;
 pub mod report;
 pub mod rhomb;

@@ -15,6 +15,8 @@ pub fn meshers() -> Vec<Box<dyn Mesher>> {
         Box::new(crate::reference::TriangleMesher),
         Box::new(crate::reference::SpadeMesher),
         Box::new(crate::rhomb::Rhomb),
+        Box::new(crate::refine::Saalfeld::default()),
+        Box::new(crate::refine::Lsb::default()),
     ]
 }
 

@@ -42,6 +42,22 @@ enum Command {
     /// The paper's protocol: raise the requested minimum angle from 20° by --step until the
     /// mesher fails; print the last good angle, its triangle count and time.
     MaxAngle(MaxAngleArgs),
+    /// Fuzz a mesher's promises on generated point sets (uniform, clustered, collinear,
+    /// near-duplicates, scaled, translated, lattice-aligned); exit 1 on any failure.
+    Fuzz(FuzzArgs),
+}
+
+#[derive(Args)]
+struct FuzzArgs {
+    /// The mesher (hex-simple, hex, or any registered name).
+    #[arg(long)]
+    mesher: String,
+    /// Number of generated cases.
+    #[arg(long, default_value_t = 10_000)]
+    cases: u64,
+    /// Seed of the case generator: the same seed gives the same cases.
+    #[arg(long, default_value_t = 20_261_123)]
+    seed: u64,
 }
 
 #[derive(Args)]
@@ -84,6 +100,9 @@ struct MeshArgs {
     /// Output formats, comma-separated: node, vtk, msh, svg.
     #[arg(long, value_delimiter = ',', default_value = "node")]
     format: Vec<String>,
+    /// Also draw the hexagon subdivision with its dual mesh (hex meshers) as an SVG file.
+    #[arg(long)]
+    hexagons: Option<PathBuf>,
     /// Budget: at most this many refinement steps.
     #[arg(long)]
     max_steps: Option<u64>,
@@ -143,6 +162,7 @@ fn run(command: Command) -> Result<ExitCode> {
         Command::Mesh(args) => mesh(&args),
         Command::Verify(args) => verify(&args),
         Command::MaxAngle(args) => max_angle(&args),
+        Command::Fuzz(args) => fuzz(&args),
     }
 }
 
@@ -233,6 +253,17 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     for path in written {
         println!("{}", path.display());
     }
+    if let Some(path) = &args.hexagons {
+        match mesher.name() {
+            "hex-simple" => crate::hex::write_hexagons_svg(&input, &params, path)?,
+            other => {
+                return Err(Error::Usage(format!(
+                    "--hexagons draws the hexagon subdivision of hex-simple, not of {other}"
+                )))
+            }
+        }
+        println!("{}", path.display());
+    }
     Ok(ExitCode::SUCCESS)
 }
 
@@ -287,6 +318,57 @@ fn max_angle(args: &MaxAngleArgs) -> Result<ExitCode> {
     }
     println!("{json}");
     Ok(if result.angle.is_some() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
+    use std::io::IsTerminal;
+    if !matches!(args.mesher.as_str(), "hex" | "hex-simple") {
+        crate::registry::mesher(&args.mesher)?;
+    }
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(args.cases);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {pos}/{len} cases, eta {eta}",
+            )
+            .map_err(|e| Error::Usage(format!("progress bar: {e}")))?,
+        );
+        Some(bar)
+    } else {
+        None
+    };
+    let step = (args.cases / 20).max(1);
+    let summary =
+        crate::hex::fuzz_campaign(&args.mesher, args.cases, args.seed, |done| match &bar {
+            Some(bar) => bar.set_position(done),
+            None if done % step == 0 => eprintln!("{done}/{} cases", args.cases),
+            None => {}
+        });
+    if let Some(bar) = bar {
+        bar.finish_and_clear();
+    }
+    println!(
+        "fuzz {}: {} cases (seed {}), {} refused as below f64 resolution, {} failed",
+        summary.mesher, summary.cases, summary.seed, summary.refused, summary.failures
+    );
+    println!(
+        "worst angles seen: min {:.9}°, max {:.9}°; largest mesh {} triangles",
+        summary.worst_min_angle, summary.worst_max_angle, summary.max_triangles
+    );
+    if let Some(f) = &summary.first_failure {
+        println!(
+            "first failure: case {} ({}): {}",
+            f.case, f.family, f.message
+        );
+        if let Some(path) = &f.path {
+            println!("input written to {}", path.display());
+        }
+    }
+    Ok(if summary.failures == 0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)

@@ -1,0 +1,197 @@
+//! Refinement meshers built on a Delaunay triangulation of the input:
+//! - [`saalfeld`]: conforming Delaunay triangulation of a PSLG by iterated intersection of the
+//!   segments with the Delaunay triangulation of a growing vertex set (Saalfeld, "Delaunay Edge
+//!   Refinements", Sec. 6), and the constructive refinement of its Sec. 5 as an option.
+//! - [`lsb`]: modified longest-side bisection (Stamm, Eidenbenz, Pajarola, Definition 3.2 and
+//!   rule 4.1) with Rivara propagation, driven by a longest-edge heap (their Sec. 4).
+//!
+//! This file holds what both share: the domain a point set is meshed in, the triangles of a
+//! spade triangulation, and the removal of triangles outside the domain or in holes.
+
+pub mod lsb;
+pub mod saalfeld;
+
+pub use lsb::{family, lsb_descent_check, min_angle, Lsb, LsbRun, Target};
+pub use saalfeld::{ConformingRun, Saalfeld};
+
+use std::collections::{HashMap, HashSet};
+use std::time::{Duration, Instant};
+
+use spade::handles::FixedVertexHandle;
+use spade::{InsertionError, Point2, Triangulation};
+
+use crate::error::Error;
+use crate::geom::{orient2d, Point};
+use crate::mesh::Pslg;
+use crate::mesher::Budget;
+
+/// The domain a refinement mesher works in: a PSLG as given, a point set inside its bounding
+/// hexagon (`Pslg::reference_domain`, DESIGN.md "Datasets"), so that both meshers mesh the
+/// same region as the reference meshers.
+pub(crate) fn domain(input: &Pslg) -> Pslg {
+    input.reference_domain()
+}
+
+/// Undirected edge key: the smaller vertex first.
+pub(crate) fn ekey(a: u32, b: u32) -> (u32, u32) {
+    if a < b {
+        (a, b)
+    } else {
+        (b, a)
+    }
+}
+
+/// spade refuses coordinates of magnitude below 2^-142 (its exact predicates could underflow);
+/// such a coordinate is indistinguishable from zero at any scale f64 can mesh.
+pub(crate) fn to_spade(p: Point) -> Point2<f64> {
+    spade::mitigate_underflow(Point2::new(p[0], p[1]))
+}
+
+pub(crate) fn insertion_error(mesher: &str, e: InsertionError) -> Error {
+    Error::mesher(mesher, format!("spade refused a vertex: {e:?}"))
+}
+
+/// The counter-clockwise inner triangles of a spade triangulation, as vertex indices
+/// (spade's vertex handles count insertions from 0, so the index is the insertion order).
+pub(crate) fn spade_triangles<T: Triangulation>(t: &T) -> Vec<[u32; 3]> {
+    t.inner_faces()
+        .map(|f| {
+            let [a, b, c] = f.vertices();
+            [idx(a.fix()), idx(b.fix()), idx(c.fix())]
+        })
+        .collect()
+}
+
+pub(crate) fn idx(h: FixedVertexHandle) -> u32 {
+    h.index() as u32
+}
+
+/// Keeps the triangles inside the domain (Triangle's convention for `.poly` files): triangles
+/// reachable from the convex hull without crossing a segment are outside, and so are those
+/// reachable from a hole seed. `barriers` holds the segment edges as undirected keys.
+/// The flood runs in index order, so the result does not depend on hash order.
+pub(crate) fn carve(
+    vertices: &[Point],
+    triangles: &[[u32; 3]],
+    barriers: &HashSet<(u32, u32)>,
+    holes: &[Point],
+) -> Vec<[u32; 3]> {
+    let mut by_edge: HashMap<(u32, u32), usize> = HashMap::with_capacity(triangles.len() * 3);
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            by_edge.insert((tri[k], tri[(k + 1) % 3]), t);
+        }
+    }
+    let mut outside = vec![false; triangles.len()];
+    let mut stack: Vec<usize> = Vec::new();
+    for (t, tri) in triangles.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if !by_edge.contains_key(&(b, a)) && !barriers.contains(&ekey(a, b)) && !outside[t] {
+                outside[t] = true;
+                stack.push(t);
+            }
+        }
+    }
+    for &h in holes {
+        let hit = triangles.iter().position(|tri| {
+            let [a, b, c] = tri.map(|v| vertices[v as usize]);
+            orient2d(a, b, h) >= 0.0 && orient2d(b, c, h) >= 0.0 && orient2d(c, a, h) >= 0.0
+        });
+        if let Some(t) = hit {
+            if !outside[t] {
+                outside[t] = true;
+                stack.push(t);
+            }
+        }
+    }
+    while let Some(t) = stack.pop() {
+        let tri = triangles[t];
+        for k in 0..3 {
+            let (a, b) = (tri[k], tri[(k + 1) % 3]);
+            if barriers.contains(&ekey(a, b)) {
+                continue;
+            }
+            if let Some(&n) = by_edge.get(&(b, a)) {
+                if !outside[n] {
+                    outside[n] = true;
+                    stack.push(n);
+                }
+            }
+        }
+    }
+    triangles
+        .iter()
+        .zip(&outside)
+        .filter(|(_, &o)| !o)
+        .map(|(t, _)| *t)
+        .collect()
+}
+
+/// Drops vertices no triangle uses (those outside the domain), keeping the order of the rest,
+/// so that input points keep their indices whenever all of them lie in the domain.
+/// Returns the new vertices, the renumbered triangles, and old index -> new index.
+pub(crate) fn compact(
+    vertices: &[Point],
+    triangles: &[[u32; 3]],
+) -> (Vec<Point>, Vec<[u32; 3]>, Vec<Option<u32>>) {
+    let mut used = vec![false; vertices.len()];
+    for t in triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    let mut map = vec![None; vertices.len()];
+    let mut out = Vec::new();
+    for (i, &p) in vertices.iter().enumerate() {
+        if used[i] {
+            map[i] = Some(out.len() as u32);
+            out.push(p);
+        }
+    }
+    let tris = triangles
+        .iter()
+        .map(|t| t.map(|v| map[v as usize].unwrap_or(u32::MAX)))
+        .collect();
+    (out, tris, map)
+}
+
+/// The three budget limits, checked together; the reason names the limit that ran out.
+pub(crate) struct Limits {
+    budget: Budget,
+    start: Instant,
+}
+
+impl Limits {
+    pub(crate) fn new(budget: Budget) -> Limits {
+        Limits {
+            budget,
+            start: Instant::now(),
+        }
+    }
+
+    pub(crate) fn elapsed(&self) -> Duration {
+        self.start.elapsed()
+    }
+
+    /// `Some(reason)` when `steps` reached its limit, `vertices` (the count a step would
+    /// leave) exceeds its limit, or time ran out.
+    pub(crate) fn exceeded(&self, steps: u64, vertices: usize) -> Option<String> {
+        if let Some(max) = self.budget.max_steps {
+            if steps >= max {
+                return Some(format!("step budget of {max} reached"));
+            }
+        }
+        if let Some(max) = self.budget.max_vertices {
+            if vertices > max {
+                return Some(format!("vertex budget of {max} reached"));
+            }
+        }
+        if let Some(max) = self.budget.max_time {
+            if self.start.elapsed() >= max {
+                return Some(format!("time budget of {max:?} reached"));
+            }
+        }
+        None
+    }
+}

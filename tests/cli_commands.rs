@@ -1,0 +1,159 @@
+//! The commands end to end, as a user runs them: mesh with every registered mesher then verify
+//! against its promise, max-angle, fuzz, and the hexagon picture.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn hexmesh(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_hexmesh"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("hexmesh runs")
+}
+
+fn temp(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("hexmesh-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir.join(name)
+}
+
+fn text(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr)
+}
+
+#[test]
+fn every_registered_mesher_meshes_and_verifies_against_its_own_bounds() {
+    for name in hexmesh::mesher_names() {
+        let prefix = temp(&format!("plane-100-{name}"));
+        let p = prefix.to_str().expect("utf-8");
+        let mut args = vec!["mesh", "datasets/plane-100.node", "--mesher", name, "-o", p];
+        args.extend(["--format", "node,vtk,msh,svg", "--timeout", "120"]);
+        let reference = matches!(name, "cgal" | "triangle" | "spade");
+        if reference {
+            args.extend(["--min-angle", "30"]);
+        }
+        let out = hexmesh(&args);
+        assert!(out.status.success(), "{name}: {}", text(&out));
+        for ext in ["node", "ele", "vtk", "msh", "svg"] {
+            assert!(prefix.with_extension(ext).exists(), "{name}: no .{ext}");
+        }
+        let bounds = if reference {
+            "min-angle=30".to_string()
+        } else {
+            name.to_string()
+        };
+        let out = hexmesh(&[
+            "verify",
+            p,
+            "--input",
+            "datasets/plane-100.node",
+            "--bounds",
+            &bounds,
+        ]);
+        assert!(
+            out.status.success(),
+            "{name} fails its bounds:\n{}",
+            text(&out)
+        );
+    }
+}
+
+#[test]
+fn a_timeout_stops_a_mesher_that_does_not_terminate_and_writes_nothing() {
+    let prefix = temp("close-pair-triangle-44");
+    let p = prefix.to_str().expect("utf-8");
+    let out = hexmesh(&[
+        "mesh",
+        "close-pair",
+        "--mesher",
+        "triangle",
+        "--min-angle",
+        "44",
+        "--timeout",
+        "0.5",
+        "-o",
+        p,
+    ]);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+    assert!(text(&out).contains("timeout"), "{}", text(&out));
+    assert!(!prefix.with_extension("ele").exists());
+}
+
+#[test]
+fn max_angle_prints_a_row_and_json() {
+    let out = hexmesh(&[
+        "max-angle",
+        "close-pair",
+        "--mesher",
+        "triangle",
+        "--start",
+        "30",
+        "--step",
+        "1",
+        "--timeout",
+        "2",
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let json = stdout.lines().last().expect("a JSON line");
+    let v: serde_json::Value = serde_json::from_str(json).expect("JSON");
+    let angle = v["angle"].as_f64().expect("an angle");
+    assert!((30.0..45.0).contains(&angle), "{angle}");
+    assert!(v["triangles"].as_u64().is_some_and(|t| t > 0));
+}
+
+#[test]
+fn fuzz_runs_a_small_campaign_and_summarises_it() {
+    let out = hexmesh(&[
+        "fuzz",
+        "--mesher",
+        "hex-simple",
+        "--cases",
+        "40",
+        "--seed",
+        "7",
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    let t = text(&out);
+    assert!(
+        t.contains("40 cases (seed 7)") && t.contains("0 failed"),
+        "{t}"
+    );
+    assert!(t.contains("worst angles seen"), "{t}");
+}
+
+#[test]
+fn the_hexagon_picture_is_drawn_for_hex_simple_and_refused_for_others() {
+    let prefix = temp("close-pair-hex-simple");
+    let svg = temp("close-pair-hexagons.svg");
+    let (p, s) = (
+        prefix.to_str().expect("utf-8"),
+        svg.to_str().expect("utf-8"),
+    );
+    let out = hexmesh(&[
+        "mesh",
+        "close-pair",
+        "--mesher",
+        "hex-simple",
+        "-o",
+        p,
+        "--hexagons",
+        s,
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    let picture = std::fs::read_to_string(&svg).expect("picture written");
+    assert!(picture.starts_with("<svg") || picture.starts_with("<?xml"));
+    assert!(picture.matches("<polygon").count() > 10, "hexagons drawn");
+    let out = hexmesh(&[
+        "mesh",
+        "close-pair",
+        "--mesher",
+        "spade",
+        "-o",
+        p,
+        "--hexagons",
+        s,
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+}

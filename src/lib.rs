@@ -18,6 +18,7 @@ pub mod quality;
 pub mod reference;
 pub mod refine;
 pub mod registry;
+pub mod report;
 pub mod rhomb;
 
 pub use error::{Error, InputError, Result};

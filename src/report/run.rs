@@ -1,0 +1,624 @@
+//! Running the cases: every mesher on every dataset, each meshing call in a child process of
+//! our binary (`isolate`), checked by `quality` against the bounds its mesher promises
+//! (DESIGN.md "Checks"), and the paper's max-angle protocol (Sec. 8) for the references.
+//! A failure becomes a row with its `err`; nothing here stops the report but a usage error
+//! or an unwritable output directory.
+
+use std::path::Path;
+use std::time::Duration;
+
+use super::plot::{self, AngleSeries, ScalingSeries};
+use super::progress::Progress;
+use super::readme::{self, Artifacts, Picture, RunFacts};
+use super::row::{one_line, write_csv, Row, COLUMNS, NOT_RUN};
+use super::stats::Timing;
+use super::table1::{self, paper_row, MaxAngleRow, MAX_ANGLE_COLUMNS};
+use super::{case_params, clear_generated, ReportOptions, REFERENCES, REFERENCE_MIN_ANGLE};
+use crate::error::{Error, Result};
+use crate::io::{write_svg, SvgOptions};
+use crate::mesh::{Pslg, TriMesh};
+use crate::mesher::{MeshRun, Mesher};
+use crate::quality::{self, Bounds};
+use crate::{datasets, isolate, maxangle, registry};
+
+/// The datasets drawn in the manner of the paper's Fig. 15 (its four rows).
+const PICTURED: &[&str] = &["close-pair", "line-100", "plane-100", "imr"];
+
+/// What one case leaves behind besides its row.
+struct Outcome {
+    row: Row,
+    histogram: Option<Vec<u64>>,
+    bounds: Vec<f64>,
+    mesh: Option<TriMesh>,
+}
+
+/// Runs the whole report and writes `opts.out` (see the module comment of `report`).
+pub fn run_report(opts: &ReportOptions) -> Result<()> {
+    check_options(opts)?;
+    let names = dataset_names(opts);
+    // Resolve every name before anything runs or is deleted: a typo is a usage error, not
+    // an hour of work followed by a row per case.
+    let mut inputs: Vec<(String, Pslg)> = Vec::with_capacity(names.len());
+    for n in &names {
+        inputs.push((n.clone(), datasets::by_name(n)?));
+    }
+    let meshers = resolve_meshers(&opts.meshers)?;
+    let exe = isolate::find_exe()?;
+    plot::ensure_font()?;
+    clear_generated(&opts.out)?;
+
+    let references: Vec<&dyn Mesher> = meshers
+        .iter()
+        .map(|m| m.as_ref())
+        .filter(|m| REFERENCES.contains(&m.name()))
+        .collect();
+    let table_inputs: Vec<&(String, Pslg)> = inputs
+        .iter()
+        .filter(|(n, _)| opts.max_angle && paper_row(n).is_some())
+        .collect();
+    let total = (inputs.len() * meshers.len() + table_inputs.len() * references.len()) as u64;
+    let mut progress = Progress::new(total);
+    let mut rows: Vec<Row> = Vec::new();
+    let mut art = Artifacts::default();
+    let results_csv = opts.out.join("results.csv");
+
+    for (name, input) in &inputs {
+        let mut series = Vec::new();
+        for m in &meshers {
+            progress.start(&format!("{name} × {}", m.name()));
+            let outcome = run_case(&exe, m.as_ref(), name, input, opts.runs, opts.timeout);
+            progress.finish_step(&summary(&outcome.row));
+            if let Some(h) = &outcome.histogram {
+                series.push(AngleSeries {
+                    mesher: m.name().to_string(),
+                    histogram: h.clone(),
+                    bounds: outcome.bounds.clone(),
+                });
+            }
+            if PICTURED.contains(&name.as_str()) {
+                if let Some(mesh) = &outcome.mesh {
+                    match picture(&opts.out, name, m.name(), input, mesh) {
+                        Ok(p) => art.pictures.push(p),
+                        Err(e) => art
+                            .problems
+                            .push(format!("picture of {name} × {}: {e}", m.name())),
+                    }
+                }
+            }
+            rows.push(outcome.row);
+            // Rewritten after every case, so an interrupted report keeps what it measured.
+            write_csv(&results_csv, COLUMNS, &rows)?;
+        }
+        if !series.is_empty() {
+            let stem = format!("angles-{name}");
+            let title = format!("angles of {name}: fraction per 1° bin, dashed = promised bounds");
+            match plot::angle_plot(&opts.out, &stem, &title, &series) {
+                Ok(_) => art.angle_plots.push((name.clone(), stem)),
+                Err(e) => art.problems.push(format!("angle plot of {name}: {e}")),
+            }
+        }
+    }
+
+    write_csv(&results_csv, COLUMNS, &rows)?;
+
+    let mut max_angles = Vec::new();
+    for (name, input) in &table_inputs {
+        for m in &references {
+            progress.start(&format!("max angle: {name} × {}", m.name()));
+            let row = run_max_angle(&exe, *m, name, input, opts);
+            progress.finish_step(&format!(
+                "max angle: {name} × {}: {}",
+                m.name(),
+                match row.angle {
+                    Some(a) => format!("{a:.2}°"),
+                    None if !row.err.is_empty() => one_line(&row.err),
+                    None => format!("none; {}", one_line(&row.next_failure)),
+                }
+            ));
+            max_angles.push(row);
+        }
+    }
+    write_csv(
+        &opts.out.join("maxangle.csv"),
+        MAX_ANGLE_COLUMNS,
+        &max_angles,
+    )?;
+
+    if opts.scaling {
+        let series = scaling_series(&rows, &meshers);
+        match plot::scaling_plot(&opts.out, "scaling", &series) {
+            Ok(_) => art.scaling = Some("scaling".to_string()),
+            Err(e) => art.problems.push(format!("scaling plot: {e}")),
+        }
+    }
+
+    let mesher_names: Vec<String> = meshers.iter().map(|m| m.name().to_string()).collect();
+    let table = table1::render(
+        &rows,
+        &max_angles,
+        &mesher_names,
+        REFERENCES,
+        REFERENCE_MIN_ANGLE,
+    );
+    write_text(&opts.out.join("table1.md"), &table)?;
+    let facts = RunFacts {
+        runs: opts.runs,
+        timeout_s: opts.timeout.as_secs_f64(),
+        references: references.iter().map(|m| m.name().to_string()).collect(),
+        reference_request: REFERENCE_MIN_ANGLE,
+        max_angle_step: opts.max_angle_step,
+        max_angle_timeout_s: opts.max_angle_timeout.as_secs_f64(),
+    };
+    write_text(
+        &opts.out.join("README.md"),
+        &readme::render(&rows, &max_angles, &art, &facts),
+    )?;
+    progress.note(&format!(
+        "report written to {} ({} rows)",
+        opts.out.display(),
+        rows.len()
+    ));
+    progress.finish();
+    Ok(())
+}
+
+fn check_options(opts: &ReportOptions) -> Result<()> {
+    if opts.runs == 0 {
+        return Err(Error::Usage("--runs must be at least 1".into()));
+    }
+    if opts.timeout.is_zero() || opts.max_angle_timeout.is_zero() {
+        return Err(Error::Usage("timeouts must be longer than zero".into()));
+    }
+    if !(opts.max_angle_step.is_finite() && opts.max_angle_step > 0.0) {
+        return Err(Error::Usage(format!(
+            "the max-angle step {} must be a positive number of degrees",
+            opts.max_angle_step
+        )));
+    }
+    Ok(())
+}
+
+/// The datasets in the order given, `SMALL` when none are, with `SCALING` appended when asked;
+/// a name given twice runs once.
+fn dataset_names(opts: &ReportOptions) -> Vec<String> {
+    let mut names: Vec<String> = if opts.datasets.is_empty() {
+        datasets::SMALL.iter().map(|s| s.to_string()).collect()
+    } else {
+        opts.datasets.clone()
+    };
+    if opts.scaling {
+        names.extend(datasets::SCALING.iter().map(|s| s.to_string()));
+    }
+    let mut seen = Vec::new();
+    names.retain(|n| {
+        let new = !seen.contains(n);
+        seen.push(n.clone());
+        new
+    });
+    names
+}
+
+fn resolve_meshers(names: &[String]) -> Result<Vec<Box<dyn Mesher>>> {
+    if names.is_empty() {
+        return Ok(registry::meshers());
+    }
+    let mut out: Vec<Box<dyn Mesher>> = Vec::new();
+    for n in names {
+        if !out.iter().any(|m| m.name() == n) {
+            out.push(registry::mesher(n)?);
+        }
+    }
+    Ok(out)
+}
+
+/// The bounds a mesher's output is checked against: its own promise, and for a reference the
+/// minimum angle it was asked for.
+fn bounds_for(mesher: &str) -> Result<Bounds> {
+    let b = Bounds::parse(mesher)?;
+    if REFERENCES.contains(&mesher) {
+        b.with_min_angle(REFERENCE_MIN_ANGLE)
+    } else {
+        Ok(b)
+    }
+}
+
+fn run_case(
+    exe: &Path,
+    mesher: &dyn Mesher,
+    dataset: &str,
+    input: &Pslg,
+    runs: usize,
+    timeout: Duration,
+) -> Outcome {
+    let name = mesher.name();
+    let mut row = Row::empty(dataset, input.points.len(), name, &mesher.version());
+    let (params, asked) = case_params(name);
+    row.params = asked;
+    row.settings = one_line(&mesher.settings(&params));
+    let mut outcome = Outcome {
+        row,
+        histogram: None,
+        bounds: Vec::new(),
+        mesh: None,
+    };
+    if input.has_segments() && !mesher.supports_segments() {
+        outcome.row.err = NOT_RUN.into();
+        return outcome;
+    }
+
+    let mut times: Vec<Duration> = Vec::new();
+    let mut peak: Option<u64> = None;
+    let mut first: Option<MeshRun> = None;
+    let mut errors: Vec<String> = Vec::new();
+    for _ in 0..runs {
+        match isolate::run_isolated(exe, name, input, &params, timeout) {
+            Err(e) => {
+                errors.push(e.to_string());
+                break;
+            }
+            Ok(iso) => {
+                peak = Some(peak.unwrap_or(0).max(iso.peak_rss_bytes));
+                let run = iso.run;
+                if !run.complete {
+                    errors.push(format!(
+                        "stopped early: {}",
+                        run.stop_reason.as_deref().unwrap_or("no reason given")
+                    ));
+                    if first.is_none() {
+                        first = Some(run);
+                    }
+                    break;
+                }
+                times.push(run.elapsed);
+                match &first {
+                    None => first = Some(run),
+                    Some(f) if f.mesh != run.mesh => {
+                        errors.push("the mesh differs from the first run's".into());
+                    }
+                    Some(_) => {}
+                }
+            }
+        }
+    }
+    let row = &mut outcome.row;
+    row.complete = errors.is_empty() && first.as_ref().is_some_and(|r| r.complete);
+    row.err = one_line(&errors.join("; "));
+    row.runs = times.len() as u64;
+    if let Some(t) = Timing::of(&times) {
+        row.time_median_s = Some(t.median);
+        row.time_min_s = Some(t.min);
+        row.time_max_s = Some(t.max);
+    }
+    row.peak_rss_mb = peak.map(|b| b as f64 / (1024.0 * 1024.0));
+
+    let Some(run) = first else {
+        return outcome;
+    };
+    if run.mesh.triangles.is_empty() {
+        return outcome;
+    }
+    let bounds = match bounds_for(name) {
+        Ok(b) => Some(b),
+        Err(e) => {
+            let note = format!("no bounds to check: {e}");
+            row.err = if row.err.is_empty() {
+                note
+            } else {
+                format!("{}; {note}", row.err)
+            };
+            None
+        }
+    };
+    let verdict = quality::verdict(&run.mesh, Some(input), bounds.as_ref());
+    let m = &verdict.metrics;
+    row.vertices = Some(m.vertices as u64);
+    row.triangles = Some(m.triangles as u64);
+    row.covered_area = Some(m.covered_area);
+    row.min_angle = m.min_angle.as_ref().map(|w| w.value);
+    row.max_angle = m.max_angle.as_ref().map(|w| w.value);
+    row.radius_ratio_max = m.radius_ratio_max.as_ref().map(|w| w.value);
+    row.edge_ratio_max = m.edge_ratio_max.as_ref().map(|w| w.value);
+    row.shortest_edge = m.shortest_edge.as_ref().map(|w| w.value);
+    row.d_min = m.d_min;
+    row.shortest_over_dmin = m.shortest_edge_over_d_min;
+    row.delaunay_exact_violations = Some(m.delaunay_violations as u64);
+    row.delaunay_tol_violations = Some(m.delaunay_tolerance_violations as u64);
+    if let Some(split) = &verdict.split {
+        row.interior_min_angle = split.interior.min_angle.as_ref().map(|w| w.value);
+        row.interior_max_angle = split.interior.max_angle.as_ref().map(|w| w.value);
+    }
+    row.valid = Some(verdict.violations.len() as u64);
+    row.problem = first_problem(&verdict);
+    if let Some(b) = &bounds {
+        row.bounds_ok = Some(verdict.passed());
+        outcome.bounds = b.min_angle.into_iter().chain(b.max_angle).collect();
+    }
+    outcome.histogram = Some(verdict.metrics.angle_histogram);
+    outcome.mesh = Some(run.mesh);
+    outcome
+}
+
+/// The first validity violation, else the first failed check, in one line.
+fn first_problem(v: &quality::Verdict) -> String {
+    if let Some(first) = v.violations.first() {
+        let more = v.violations.len() - 1;
+        let tail = if more > 0 {
+            format!(" (and {more} more)")
+        } else {
+            String::new()
+        };
+        return one_line(&format!("{first}{tail}"));
+    }
+    v.checks
+        .iter()
+        .find(|c| c.status == quality::Status::Fail)
+        .map_or_else(String::new, |c| {
+            let value = c
+                .value
+                .map_or_else(|| "none".to_string(), |x| format!("{x}"));
+            let note = c
+                .note
+                .as_ref()
+                .map_or_else(String::new, |n| format!(" ({n})"));
+            one_line(&format!(
+                "{} = {value}, must be {} {}{note}",
+                c.what, c.relation, c.limit
+            ))
+        })
+}
+
+fn summary(r: &Row) -> String {
+    let mut s = format!("{} × {}: ", r.dataset, r.mesher);
+    match (r.triangles, r.min_angle, r.max_angle) {
+        (Some(t), Some(lo), Some(hi)) => {
+            s.push_str(&format!("{t} triangles, angles {lo:.2}°–{hi:.2}°"));
+        }
+        _ => s.push_str("no mesh"),
+    }
+    if let Some(t) = r.time_median_s {
+        s.push_str(&format!(", {t:.4} s"));
+    }
+    if r.bounds_ok == Some(false) {
+        s.push_str(", BOUNDS FAIL");
+    }
+    if !r.err.is_empty() {
+        s.push_str(&format!(" [{}]", one_line(&r.err)));
+    }
+    s
+}
+
+fn run_max_angle(
+    exe: &Path,
+    mesher: &dyn Mesher,
+    dataset: &str,
+    input: &Pslg,
+    opts: &ReportOptions,
+) -> MaxAngleRow {
+    let mut row = MaxAngleRow {
+        dataset: dataset.to_string(),
+        mesher: mesher.name().to_string(),
+        step: opts.max_angle_step,
+        start: opts.max_angle_start,
+        angle: None,
+        triangles: None,
+        time_s: None,
+        next_failure: String::new(),
+        err: String::new(),
+    };
+    if input.has_segments() && !mesher.supports_segments() {
+        row.err = NOT_RUN.into();
+        return row;
+    }
+    match maxangle::max_angle(
+        exe,
+        mesher.name(),
+        input,
+        opts.max_angle_step,
+        opts.max_angle_timeout,
+        opts.max_angle_start,
+    ) {
+        Ok(m) => {
+            row.angle = m.angle;
+            if m.angle.is_some() {
+                row.triangles = Some(m.triangles as u64);
+                row.time_s = Some(m.seconds);
+            }
+            row.next_failure = one_line(&format!("{:.2}°: {}", m.failed_at, m.failure));
+        }
+        Err(e) => row.err = one_line(&e.to_string()),
+    }
+    row
+}
+
+/// Time and triangles against input points for the plane-* family, one series per mesher.
+fn scaling_series(rows: &[Row], meshers: &[Box<dyn Mesher>]) -> Vec<ScalingSeries> {
+    meshers
+        .iter()
+        .map(|m| ScalingSeries {
+            mesher: m.name().to_string(),
+            samples: rows
+                .iter()
+                .filter(|r| r.mesher == m.name() && r.dataset.starts_with("plane-") && r.complete)
+                .filter_map(|r| Some((r.points as f64, r.time_median_s?, r.triangles? as f64)))
+                .collect(),
+        })
+        .filter(|s| !s.samples.is_empty())
+        .collect()
+}
+
+/// Where the detail is, for the zoomed picture: the two close points, an end of the line.
+fn zoom_window(dataset: &str, input: &Pslg) -> Option<([f64; 4], &'static str)> {
+    match dataset {
+        "close-pair" => {
+            let (c, r) = crate::geom::min_enclosing_circle(&input.points);
+            let h = 2.5 * r.max(f64::MIN_POSITIVE);
+            Some((
+                [c[0] - h, c[1] - h, c[0] + h, c[1] + h],
+                "the two close points",
+            ))
+        }
+        "line-100" => {
+            let end = input
+                .points
+                .iter()
+                .copied()
+                .min_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])))?;
+            let h = 0.05;
+            Some((
+                [end[0] - h, end[1] - h, end[0] + h, end[1] + h],
+                "the end of the line at the origin",
+            ))
+        }
+        "imr" => {
+            // The R's bowl and counter, the finest detail: the input points around the hole
+            // seed, framed with a small margin.
+            let seed = *input.holes.first()?;
+            let near: Vec<[f64; 2]> = input
+                .points
+                .iter()
+                .copied()
+                .filter(|p| crate::geom::dist(*p, seed) < 0.45)
+                .collect();
+            let lo = near
+                .iter()
+                .fold(seed, |a, p| [a[0].min(p[0]), a[1].min(p[1])]);
+            let hi = near
+                .iter()
+                .fold(seed, |a, p| [a[0].max(p[0]), a[1].max(p[1])]);
+            let pad = 0.04 * (hi[0] - lo[0]).max(hi[1] - lo[1]);
+            Some((
+                [lo[0] - pad, lo[1] - pad, hi[0] + pad, hi[1] + pad],
+                "the bowl and counter of the R",
+            ))
+        }
+        _ => None,
+    }
+}
+
+fn picture(
+    out: &Path,
+    dataset: &str,
+    mesher: &str,
+    input: &Pslg,
+    mesh: &TriMesh,
+) -> Result<Picture> {
+    let file = format!("mesh-{dataset}-{mesher}.svg");
+    let opts = SvgOptions {
+        width: 800.0,
+        title: Some(format!(
+            "{mesher} on {dataset}: {} triangles",
+            mesh.triangles.len()
+        )),
+        highlight: input.points.clone(),
+        zoom: None,
+    };
+    write_svg(&out.join(&file), mesh, &opts)?;
+    let mut pic = Picture {
+        dataset: dataset.to_string(),
+        mesher: mesher.to_string(),
+        file,
+        zoom_file: None,
+        zoom_note: String::new(),
+    };
+    if let Some((window, note)) = zoom_window(dataset, input) {
+        let zoom_file = format!("mesh-{dataset}-{mesher}-zoom.svg");
+        let zopts = SvgOptions {
+            width: 500.0,
+            title: Some(format!("{mesher} on {dataset}: {note}")),
+            zoom: Some(window),
+            ..opts
+        };
+        write_svg(&out.join(&zoom_file), mesh, &zopts)?;
+        pic.zoom_file = Some(zoom_file);
+        pic.zoom_note = note.to_string();
+    }
+    Ok(pic)
+}
+
+fn write_text(path: &Path, text: &str) -> Result<()> {
+    std::fs::write(path, text).map_err(|e| Error::Io {
+        path: path.to_path_buf(),
+        source: e,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn inside(w: [f64; 4], p: [f64; 2]) -> bool {
+        w[0] < p[0] && p[0] < w[2] && w[1] < p[1] && p[1] < w[3]
+    }
+
+    #[test]
+    fn close_pair_zoom_frames_both_points_tightly() {
+        let input = datasets::by_name("close-pair").unwrap();
+        let (w, _) = zoom_window("close-pair", &input).unwrap();
+        assert!(input.points.iter().all(|&p| inside(w, p)));
+        // Both points must stay far apart on the picture: the window is a few d_min wide.
+        assert!(w[2] - w[0] < 0.2, "{w:?}");
+    }
+
+    #[test]
+    fn line_zoom_shows_the_end_at_the_origin_only() {
+        let input = datasets::by_name("line-100").unwrap();
+        let (w, _) = zoom_window("line-100", &input).unwrap();
+        let first = input
+            .points
+            .iter()
+            .copied()
+            .min_by(|a, b| a[0].total_cmp(&b[0]))
+            .unwrap();
+        assert!(inside(w, first));
+        assert!(!inside(w, [1.0, 0.37]));
+    }
+
+    #[test]
+    fn imr_zoom_is_centred_on_the_r_counter_and_plane_has_none() {
+        let imr = datasets::by_name("imr").unwrap();
+        let (w, _) = zoom_window("imr", &imr).unwrap();
+        assert!(inside(w, imr.holes[0]));
+        // The whole bowl: its rightmost point (above the leg) is in the frame, the M is not.
+        let right = imr
+            .points
+            .iter()
+            .copied()
+            .filter(|p| p[1] > 0.5)
+            .max_by(|a, b| a[0].total_cmp(&b[0]))
+            .unwrap();
+        assert!(inside(w, right), "{w:?} {right:?}");
+        assert!(w[0] > 1.5, "{w:?}");
+        let plane = datasets::by_name("plane-100").unwrap();
+        assert!(zoom_window("plane-100", &plane).is_none());
+    }
+
+    #[test]
+    fn dataset_list_defaults_to_small_adds_scaling_and_drops_repeats() {
+        let mut opts = ReportOptions::default();
+        assert_eq!(dataset_names(&opts), datasets::SMALL);
+        opts.datasets = vec!["imr".into(), "plane-1k".into(), "imr".into()];
+        opts.scaling = true;
+        let mut want = vec!["imr", "plane-1k"];
+        want.extend(datasets::SCALING);
+        assert_eq!(dataset_names(&opts), want);
+    }
+
+    #[test]
+    fn first_problem_names_a_failed_bound_with_its_limit() {
+        // A 30°-60°-90° triangle breaks hex's 43.9° bound; a 45°-45°-90° one keeps it.
+        let mesh = TriMesh {
+            vertices: vec![[0.0, 0.0], [3f64.sqrt(), 0.0], [0.0, 1.0]],
+            triangles: vec![[0, 1, 2]],
+        };
+        let b = Bounds::parse("hex").unwrap();
+        let v = quality::verdict(&mesh, None, Some(&b));
+        let p = first_problem(&v);
+        assert!(p.starts_with("min angle (deg) = 30"), "{p}");
+        assert!(p.contains("must be ≥ 43.89"), "{p}");
+        let ok = TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+            triangles: vec![[0, 1, 2]],
+        };
+        assert_eq!(first_problem(&quality::verdict(&ok, None, Some(&b))), "");
+    }
+}

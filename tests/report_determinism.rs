@@ -1,0 +1,61 @@
+//! `results.csv` is byte-identical from run to run except for the time and memory columns
+//! (METHODOLOGY.md "Reproducibility"): the report's deterministic-output promise.
+
+use std::path::{Path, PathBuf};
+use std::time::Duration;
+
+use hexmesh::report::{run_report, ReportOptions, COLUMNS, VOLATILE_COLUMNS};
+
+fn temp_dir(tag: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("hexmesh-report-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn tiny(out: &Path) -> ReportOptions {
+    ReportOptions {
+        datasets: vec!["close-pair".into(), "plane-100".into()],
+        runs: 1,
+        out: out.to_path_buf(),
+        timeout: Duration::from_secs(60),
+        max_angle: false,
+        ..ReportOptions::default()
+    }
+}
+
+/// The CSV with the volatile columns blanked out, one string per line.
+fn stable_part(path: &Path) -> Vec<String> {
+    let mut rd = csv::Reader::from_path(path).unwrap();
+    let header: Vec<String> = rd.headers().unwrap().iter().map(String::from).collect();
+    assert_eq!(header, COLUMNS);
+    let keep: Vec<usize> = (0..header.len())
+        .filter(|&i| !VOLATILE_COLUMNS.contains(&header[i].as_str()))
+        .collect();
+    rd.records()
+        .map(|r| {
+            let r = r.unwrap();
+            keep.iter().map(|&i| &r[i]).collect::<Vec<_>>().join(",")
+        })
+        .collect()
+}
+
+#[test]
+fn results_csv_is_identical_between_runs_except_time_and_memory() {
+    std::env::set_var("HEXMESH_EXE", env!("CARGO_BIN_EXE_hexmesh"));
+    let (a, b) = (temp_dir("det-a"), temp_dir("det-b"));
+    run_report(&tiny(&a)).unwrap();
+    run_report(&tiny(&b)).unwrap();
+    let (ra, rb) = (
+        stable_part(&a.join("results.csv")),
+        stable_part(&b.join("results.csv")),
+    );
+    let meshers = hexmesh::registry::mesher_names().len();
+    assert!(meshers > 0, "no mesher is registered: nothing was compared");
+    assert_eq!(ra.len(), 2 * meshers, "one row per dataset × mesher");
+    assert_eq!(ra, rb);
+    // The generated text that has no times in it is identical too.
+    let readme = |d: &Path| std::fs::read_to_string(d.join("table1.md")).unwrap();
+    assert!(readme(&a).contains("| 2 close pts (`close-pair`) |"));
+    std::fs::remove_dir_all(&a).unwrap();
+    std::fs::remove_dir_all(&b).unwrap();
+}

@@ -98,7 +98,11 @@ impl Hexagon {
         // than loop.
         let finite = |p: &&Point| p[0].is_finite() && p[1].is_finite();
         for _ in 0..64 {
-            if points.iter().filter(finite).all(|&p| hex.contains_strictly(p)) {
+            if points
+                .iter()
+                .filter(finite)
+                .all(|&p| hex.contains_strictly(p))
+            {
                 break;
             }
             hex.circumradius *= 1.0 + 1e-9;

@@ -45,6 +45,37 @@ enum Command {
     /// Fuzz a mesher's promises on generated point sets (uniform, clustered, collinear,
     /// near-duplicates, scaled, translated, lattice-aligned); exit 1 on any failure.
     Fuzz(FuzzArgs),
+    /// Run every mesher on every dataset, check and time them, and regenerate the reports
+    /// directory whole (results.csv, table1.md, plots, pictures, README.md).
+    Report(ReportArgs),
+}
+
+#[derive(Args)]
+struct ReportArgs {
+    /// Datasets, comma-separated (default: the small ones).
+    #[arg(long, value_delimiter = ',')]
+    datasets: Vec<String>,
+    /// Meshers, comma-separated (default: every registered mesher).
+    #[arg(long, value_delimiter = ',')]
+    meshers: Vec<String>,
+    /// Runs per case; times are the median, min and max.
+    #[arg(long, default_value_t = 3)]
+    runs: usize,
+    /// Add plane-10k, plane-100k and plane-1m and draw the scaling plot.
+    #[arg(long)]
+    scaling: bool,
+    /// The reports directory (its generated files are replaced).
+    #[arg(long, default_value = "reports")]
+    out: PathBuf,
+    /// Seconds one meshing call may take before it becomes an error row.
+    #[arg(long, default_value_t = 60.0)]
+    timeout: f64,
+    /// Seconds each request of the max-angle protocol may take.
+    #[arg(long, default_value_t = 10.0)]
+    max_angle_timeout: f64,
+    /// Skip the max-angle protocol (Table 1's reference columns).
+    #[arg(long)]
+    no_max_angle: bool,
 }
 
 #[derive(Args)]
@@ -163,6 +194,20 @@ fn run(command: Command) -> Result<ExitCode> {
         Command::Verify(args) => verify(&args),
         Command::MaxAngle(args) => max_angle(&args),
         Command::Fuzz(args) => fuzz(&args),
+        Command::Report(args) => {
+            crate::report::run_report(&crate::report::ReportOptions {
+                datasets: args.datasets,
+                meshers: args.meshers,
+                runs: args.runs,
+                scaling: args.scaling,
+                out: args.out,
+                timeout: seconds("--timeout", args.timeout)?,
+                max_angle_timeout: seconds("--max-angle-timeout", args.max_angle_timeout)?,
+                max_angle: !args.no_max_angle,
+                ..crate::report::ReportOptions::default()
+            })?;
+            Ok(ExitCode::SUCCESS)
+        }
     }
 }
 

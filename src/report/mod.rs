@@ -10,6 +10,7 @@
 //! - `progress`: a progress bar on a terminal, plain lines otherwise.
 //! - `run`: the cases, isolated and checked; `run_report` ties everything together.
 
+pub mod lsb;
 pub mod plot;
 pub mod progress;
 pub mod readme;
@@ -97,7 +98,13 @@ impl Default for ReportOptions {
 /// True for the names of files `run_report` generates: only these are deleted before a
 /// new report is written, so a user's own files in the directory survive.
 pub fn is_generated_file(name: &str) -> bool {
-    let fixed = ["results.csv", "maxangle.csv", "table1.md", "README.md"];
+    let fixed = [
+        "results.csv",
+        "maxangle.csv",
+        "lsb.csv",
+        "table1.md",
+        "README.md",
+    ];
     fixed.contains(&name)
         || (name.starts_with("angles-") && (name.ends_with(".svg") || name.ends_with(".png")))
         || name == "scaling.svg"

@@ -35,6 +35,10 @@ pub struct Row {
     /// Why the case failed or stopped early; empty when it did not.
     pub err: String,
     pub vertices: Option<u64>,
+    /// Vertices that are not input points: what the mesher added (for a point set this counts
+    /// the bounding hexagon's corners too). Saalfeld's and CGAL's conforming Delaunay
+    /// triangulations compare on this column (paper 002).
+    pub steiner_points: Option<u64>,
     pub triangles: Option<u64>,
     pub covered_area: Option<f64>,
     /// Degrees.
@@ -88,6 +92,7 @@ impl Row {
             complete: false,
             err: String::new(),
             vertices: None,
+            steiner_points: None,
             triangles: None,
             covered_area: None,
             min_angle: None,
@@ -124,6 +129,7 @@ pub const COLUMNS: &[&str] = &[
     "complete",
     "err",
     "vertices",
+    "steiner_points",
     "triangles",
     "covered_area",
     "min_angle",

@@ -56,7 +56,9 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         .iter()
         .filter(|(n, _)| opts.max_angle && paper_row(n).is_some())
         .collect();
-    let total = (inputs.len() * meshers.len() + table_inputs.len() * references.len()) as u64;
+    let lsb_step = usize::from(meshers.iter().any(|m| m.name() == "lsb"));
+    let total =
+        (inputs.len() * meshers.len() + table_inputs.len() * references.len() + lsb_step) as u64;
     let mut progress = Progress::new(total);
     let mut rows: Vec<Row> = Vec::new();
     let mut art = Artifacts::default();
@@ -149,10 +151,19 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         max_angle_step: opts.max_angle_step,
         max_angle_timeout_s: opts.max_angle_timeout.as_secs_f64(),
     };
-    write_text(
-        &opts.out.join("README.md"),
-        &readme::render(&rows, &max_angles, &art, &facts),
-    )?;
+    let mut readme_text = readme::render(&rows, &max_angles, &art, &facts);
+    if meshers.iter().any(|m| m.name() == "lsb") {
+        progress.start("lsb: Theorem 3.4 on the datasets");
+        let lsb_rows = super::lsb::lsb_rows(&inputs);
+        write_csv(
+            &opts.out.join("lsb.csv"),
+            super::lsb::LSB_COLUMNS,
+            &lsb_rows,
+        )?;
+        readme_text.push_str(&super::lsb::render(&lsb_rows));
+        progress.finish_step("lsb: Theorem 3.4 on the datasets");
+    }
+    write_text(&opts.out.join("README.md"), &readme_text)?;
     progress.note(&format!(
         "report written to {} ({} rows)",
         opts.out.display(),
@@ -312,6 +323,7 @@ fn run_case(
     let verdict = quality::verdict(&run.mesh, Some(input), bounds.as_ref());
     let m = &verdict.metrics;
     row.vertices = Some(m.vertices as u64);
+    row.steiner_points = Some(m.vertices.saturating_sub(row.points as usize) as u64);
     row.triangles = Some(m.triangles as u64);
     row.covered_area = Some(m.covered_area);
     row.min_angle = m.min_angle.as_ref().map(|w| w.value);

@@ -43,7 +43,7 @@ use crate::geom::{incircle, Point};
 use crate::hex::classify::{classify, rings, Class, Rings, Role};
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
-use crate::hex::lattice::{FxHashMap, Key, Lattice};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, Lattice};
 use crate::hex::refine::{drain, refine_simple};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
@@ -68,6 +68,8 @@ pub struct ExtendedStats {
     pub rule_splits: u64,
     /// Subdivisions made by the last-resort verification of the finished dual.
     pub verify_splits: u64,
+    /// Contested ring cells (fixed for one point, moved for another) moved after all.
+    pub ring_flips: u64,
     /// Rounds of rules-then-verification.
     pub rounds: u64,
 }
@@ -173,6 +175,9 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
 fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<TriMesh, Stop> {
     refine_simple(h)?;
     let mut candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
+    // Contested ring cells whose centre moves after all, because keeping it fixed spoiled a
+    // triangle; each cell flips at most once, so the verification still terminates.
+    let mut flipped: FxHashSet<Key> = FxHashSet::default();
     loop {
         stats.rounds += 1;
         loop {
@@ -193,13 +198,40 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
             drain(h)?;
             candidates = around(&h.log);
         }
-        let r = rings(h);
-        let moved = relocations(h, &r);
-        let (mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
-        let bad = offending_leaves(h, &mesh, &keys);
-        if bad.is_empty() {
-            return Ok(mesh);
+        let mut r = rings(h);
+        for key in &flipped {
+            if let Some(&alt) = r.contested.get(key) {
+                r.roles.insert(*key, alt);
+            }
         }
+        let bad = loop {
+            let moved = relocations(h, &r);
+            let (mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
+            let bad = offending_leaves(h, &mesh, &keys);
+            if bad.is_empty() {
+                return Ok(mesh);
+            }
+            // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
+            // contested cells of the offending triangles take the moved role instead.
+            let flips: Vec<Key> = bad
+                .iter()
+                .flat_map(|b| b.vertices.iter().copied())
+                .filter(|c| r.contested.contains_key(c) && !flipped.contains(c))
+                .collect();
+            if flips.is_empty() {
+                break bad;
+            }
+            for c in flips {
+                if let Some(&alt) = r.contested.get(&c) {
+                    r.roles.insert(c, alt);
+                }
+                flipped.insert(c);
+                stats.ring_flips += 1;
+            }
+        };
+        let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();
+        bad.sort();
+        bad.dedup();
         h.log.clear();
         for key in bad {
             let before = h.steps;
@@ -329,9 +361,16 @@ fn leaf_of_vertex(h: &Hierarchy, key: Key) -> Key {
     k
 }
 
-/// The coarsest leaf hexagon of each triangle that breaks the angle bounds or the exact
-/// empty-circle test, sorted.
-fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<Key> {
+/// A triangle of the dual that breaks the angle bounds or the exact empty-circle test.
+struct BadTriangle {
+    /// The leaf hexagons of its three vertices.
+    vertices: [Key; 3],
+    /// The coarsest of them, the one to subdivide.
+    coarsest: Key,
+}
+
+/// The triangles that break the angle bounds or the exact empty-circle test.
+fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTriangle> {
     let lo = min_angle_bound() - SELF_CHECK_SLACK;
     let hi = 90.0 + SELF_CHECK_SLACK;
     let mut bad_tris: Vec<usize> = Vec::new();
@@ -348,19 +387,20 @@ fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<Key> {
         bad_tris.push(t);
         bad_tris.push(u);
     }
-    let mut out: Vec<Key> = bad_tris
+    bad_tris.sort_unstable();
+    bad_tris.dedup();
+    bad_tris
         .iter()
         .map(|&t| {
-            mesh.triangles[t]
+            let vertices = mesh.triangles[t].map(|v| leaf_of_vertex(h, keys[v as usize]));
+            let coarsest = vertices
                 .iter()
-                .map(|&v| leaf_of_vertex(h, keys[v as usize]))
+                .copied()
                 .min_by_key(|k| (k.k, *k))
-                .unwrap_or(Key::ROOT)
+                .unwrap_or(Key::ROOT);
+            BadTriangle { vertices, coarsest }
         })
-        .collect();
-    out.sort();
-    out.dedup();
-    out
+        .collect()
 }
 
 /// Pairs of triangles sharing an edge where the opposite vertex of one lies strictly inside

@@ -43,6 +43,9 @@ fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
                 }
             }
         };
+        if msg.is_some() && std::env::var_os("HEX_WRITE").is_some() {
+            let _ = hexmesh::hex::fuzz::write_failure("hex", seed, case, family, &input);
+        }
         if msg.is_some() || el > slow {
             out.push(format!(
                 "case {case} {family} n={} {el:?}: {}",

@@ -12,7 +12,7 @@ use hexmesh::{Mesher, Params};
 fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
     let bounds = hexmesh::quality::Bounds::parse("hex").expect("hex bounds");
     let params = Params::default().with_budget(Budget {
-        max_time: Some(Duration::from_secs(10)),
+        max_time: Some(Duration::from_secs(5)),
         ..Budget::default()
     });
     let mut out = Vec::new();

@@ -185,6 +185,7 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
     loop {
         stats.rounds += 1;
         loop {
+            h.check_time()?;
             let actions = extended_actions(h, &candidates);
             if actions.is_empty() {
                 break;
@@ -209,6 +210,7 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
             }
         }
         let bad = loop {
+            h.check_time()?;
             let moved = relocations(h, &r);
             let (mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
             let bad = offending_leaves(h, &mesh, &keys);

@@ -358,11 +358,7 @@ impl Hierarchy {
             }
             for c in key.children() {
                 match self.cell(c) {
-                    Cell::Full { subdivided: true } => {
-                        if seen.insert(c) {
-                            stack.push(c);
-                        }
-                    }
+                    Cell::Full { subdivided: true } if seen.insert(c) => stack.push(c),
                     Cell::Full { subdivided: false } => out.push((c, self.cell(c))),
                     Cell::Semi { owner, .. } if owner == key => out.push((c, self.cell(c))),
                     _ => {}

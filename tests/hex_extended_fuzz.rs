@@ -33,7 +33,7 @@ fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
                         (!v.passed()).then(|| {
                             let fail = format!("{v}")
                                 .lines()
-                                .filter(|l| l.starts_with("FAIL"))
+                                .filter(|l| l.contains("FAIL"))
                                 .map(|l| l.chars().take(60).collect::<String>())
                                 .collect::<Vec<_>>()
                                 .join("; ");

@@ -112,6 +112,9 @@ pub enum Role {
 #[derive(Debug, Clone, Default)]
 pub struct Rings {
     pub roles: FxHashMap<Key, Role>,
+    /// Cells claimed by the fixed ring of one point and the moved 1-ring of another, with the
+    /// moved role they lost (Sec. 5.1 lists FIXED_CENTER_IN_RING first).
+    pub contested: FxHashMap<Key, Role>,
     pub occupied: FxHashMap<Key, Class>,
     pub conflicts: Vec<Key>,
 }
@@ -195,17 +198,23 @@ pub fn rings(h: &Hierarchy) -> Rings {
                 (None, _) => {
                     r.roles.insert(cell, role);
                 }
-                (Some(Role::Fixed), Role::Fixed) => {}
-                (Some(Role::Moved { owner, .. }), _)
-                | (Some(Role::Fixed), Role::Moved { owner, .. }) => {
-                    // Two rings disagree about this centre: the moved ring of one point meets
-                    // the ring of another (Sec. 6.3 keeps OCCUPIED_2 hexagons three apart).
-                    let other = if owner == key {
-                        ring_owner_fixed(&occupied, cell, key)
-                    } else {
-                        owner
-                    };
-                    conflict(&mut r, key, other);
+                // FIXED_CENTER_IN_RING comes first in the classification of Sec. 5.1: a cell
+                // in the fixed ring of one point and the moved 1-ring of another keeps its
+                // centre. Sec. 6.3 lets OCCUPIED_2 hexagons three apart share such cells;
+                // subdividing them instead would go one level below its r_min.
+                (Some(old), Role::Fixed) => {
+                    if let Role::Moved { .. } = old {
+                        r.contested.entry(cell).or_insert(old);
+                    }
+                    r.roles.insert(cell, Role::Fixed);
+                }
+                (Some(Role::Fixed), Role::Moved { .. }) => {
+                    r.contested.entry(cell).or_insert(role);
+                }
+                (Some(Role::Moved { owner, .. }), Role::Moved { .. }) => {
+                    // Two moved 1-rings overlap only when the occupied hexagons are two apart,
+                    // closer than Sec. 6.3 assumes.
+                    conflict(&mut r, key, owner);
                 }
             }
         }
@@ -213,20 +222,6 @@ pub fn rings(h: &Hierarchy) -> Rings {
     r.conflicts.sort();
     r.conflicts.dedup();
     r
-}
-
-/// An occupied hexagon other than `me` within two cells of `cell` (whose fixed ring claimed it).
-fn ring_owner_fixed(occupied: &[Key], cell: Key, me: Key) -> Key {
-    occupied
-        .iter()
-        .copied()
-        .find(|&o| {
-            o != me && o.k == cell.k && {
-                let (di, dj) = (o.i - cell.i, o.j - cell.j);
-                di.abs().max(dj.abs()).max((di + dj).abs()) <= 2
-            }
-        })
-        .unwrap_or(me)
 }
 
 /// The class of a full leaf.

@@ -255,6 +255,17 @@ impl Hierarchy {
         }
     }
 
+    /// The time budget, checked now: for callers that do much work between subdivisions
+    /// (the extended rules), where the check every 256 steps comes too late.
+    pub fn check_time(&self) -> Result<(), Stop> {
+        match self.budget.max_time {
+            Some(max) if self.start.elapsed() > max => {
+                Err(Stop::Budget(format!("time budget of {max:?}")))
+            }
+            _ => Ok(()),
+        }
+    }
+
     fn check_budget(&self, key: Key) -> Result<(), Stop> {
         if key.k + 1 > self.level_limit {
             return Err(Stop::Precision(format!(
@@ -338,13 +349,16 @@ impl Hierarchy {
     pub fn leaves(&self) -> Vec<(Key, Cell)> {
         let mut out = Vec::new();
         let mut stack = vec![Key::ROOT];
+        // An edge child is a child of two hexagons: without this, deep subtrees were walked
+        // once per path to them, exponentially many in the depth.
+        let mut seen: FxHashSet<Key> = FxHashSet::default();
         while let Some(key) = stack.pop() {
             if !self.subdivided.contains(&key) {
                 continue;
             }
             for c in key.children() {
                 match self.cell(c) {
-                    Cell::Full { subdivided: true } => stack.push(c),
+                    Cell::Full { subdivided: true } if seen.insert(c) => stack.push(c),
                     Cell::Full { subdivided: false } => out.push((c, self.cell(c))),
                     Cell::Semi { owner, .. } if owner == key => out.push((c, self.cell(c))),
                     _ => {}

@@ -1,0 +1,106 @@
+//! The extended refinement (`hex`, paper 000 Sec. 5–6) under the fuzz campaign of
+//! `hexmesh::hex::fuzz`: every finished case must meet every Sec. 6 bound.
+
+use std::time::{Duration, Instant};
+
+use hexmesh::hex::extended::Hex;
+use hexmesh::hex::fuzz::{check_mesh, generate_case};
+use hexmesh::mesher::Budget;
+use hexmesh::{Mesher, Params};
+
+/// Meshes cases `from..to` of `seed` and returns one line per failing or slow case.
+fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
+    let bounds = hexmesh::quality::Bounds::parse("hex").expect("hex bounds");
+    let params = Params::default().with_budget(Budget {
+        max_time: Some(Duration::from_secs(5)),
+        ..Budget::default()
+    });
+    let mut out = Vec::new();
+    for case in from..to {
+        let (family, input) = generate_case(seed, case);
+        let t = Instant::now();
+        let run = Hex.mesh(&input, &params);
+        let el = t.elapsed();
+        let msg = match run {
+            Err(e) => Some(format!("error {e}")),
+            Ok(run) if !run.complete => Some(format!("incomplete {:?}", run.stop_reason)),
+            Ok(run) => {
+                let lo = hexmesh::hex::extended::min_angle_bound();
+                match check_mesh(&run.mesh, &input.points, Some((lo, 90.0))) {
+                    Err(e) => Some(e),
+                    Ok(_) => {
+                        let v = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
+                        (!v.passed()).then(|| {
+                            let fail = format!("{v}")
+                                .lines()
+                                .filter(|l| l.contains("FAIL"))
+                                .map(|l| l.chars().take(60).collect::<String>())
+                                .collect::<Vec<_>>()
+                                .join("; ");
+                            format!("{fail} [{}]", levels(&input))
+                        })
+                    }
+                }
+            }
+        };
+        if msg.is_some() && std::env::var_os("HEX_WRITE").is_some() {
+            let _ = hexmesh::hex::fuzz::write_failure("hex", seed, case, family, &input);
+        }
+        if msg.is_some() || el > slow {
+            out.push(format!(
+                "case {case} {family} n={} {el:?}: {}",
+                input.points.len(),
+                msg.unwrap_or_else(|| "slow".into())
+            ));
+        }
+    }
+    out
+}
+
+/// The finest leaf radius over d_min after the simple and after the extended refinement, with
+/// the extended statistics: where the extra level comes from.
+fn levels(input: &hexmesh::Pslg) -> String {
+    let mut d_min = f64::INFINITY;
+    for i in 0..input.points.len() {
+        for j in 0..i {
+            d_min = d_min.min(hexmesh::geom::dist(input.points[i], input.points[j]));
+        }
+    }
+    let finest = |h: &hexmesh::hex::Hierarchy| {
+        h.leaves()
+            .iter()
+            .map(|(k, _)| h.lattice.radius(k.k))
+            .fold(f64::INFINITY, f64::min)
+            / d_min
+    };
+    let (hs, _) = hexmesh::hex::mesh_with_hierarchy(input, &Params::default()).expect("simple");
+    let ext = hexmesh::hex::extended::mesh_extended(input, &Params::default()).expect("ext");
+    format!(
+        "simple r/d {:.4}, extended r/d {:.4}, r_min/d {:.4}, {:?}",
+        finest(&hs),
+        finest(&ext.hierarchy),
+        1.0 / (6.0 * 3f64.sqrt()),
+        ext.stats
+    )
+}
+
+#[test]
+#[ignore = "exploration: HEX_SEED, HEX_FROM, HEX_TO"]
+fn explore_hex_fuzz_cases() {
+    let var = |n: &str, d: u64| {
+        std::env::var(n)
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(d)
+    };
+    let lines = explore(
+        var("HEX_SEED", 7),
+        var("HEX_FROM", 0),
+        var("HEX_TO", 200),
+        Duration::from_secs(1),
+    );
+    for l in &lines {
+        eprintln!("{l}");
+    }
+    eprintln!("{} lines", lines.len());
+}

@@ -46,7 +46,7 @@ use crate::geom::{incircle, Point};
 use crate::hex::classify::{classify, rings, Class, Rings, Role};
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key, Lattice};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
 use crate::hex::refine::{drain, refine_simple};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
@@ -128,31 +128,7 @@ pub struct ExtendedRun {
 
 /// Runs the extended refinement and builds the relocated dual.
 pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
-    if input.has_segments() {
-        return Err(Error::mesher(
-            "hex",
-            "input segments are not supported; give a point set",
-        ));
-    }
-    input.validate_input()?;
-    let root = input.bounding_hexagon();
-    if !(root.circumradius > 0.0 && root.circumradius.is_finite()) {
-        return Err(Error::mesher(
-            "hex",
-            "the bounding hexagon has no positive finite radius",
-        ));
-    }
-    if let Some(i) = input
-        .points
-        .iter()
-        .position(|&p| !root.contains_strictly(p))
-    {
-        return Err(Error::mesher(
-            "hex",
-            format!("point {i} does not lie strictly inside the bounding hexagon"),
-        ));
-    }
-    let mut h = Hierarchy::new(Lattice::new(root), input.points.clone(), params.budget);
+    let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
     let outcome = refine_and_verify(&mut h, &mut stats);
     match outcome {

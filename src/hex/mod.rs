@@ -84,13 +84,12 @@ impl Mesher for HexSimple {
     }
 }
 
-/// Runs the simple refinement on a point set and returns the final hierarchy, with the reason
-/// it stopped early when a budget ran out. Errors: segments (not supported), points outside
-/// the bounding hexagon, points too close together for f64 (`InputError::Range`).
-pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<String>)> {
+/// The unrefined hierarchy of a point set, for the mesher called `mesher`: refuses segments,
+/// invalid input, a degenerate bounding hexagon, and points not strictly inside it.
+pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Result<Hierarchy> {
     if input.has_segments() {
         return Err(Error::mesher(
-            "hex-simple",
+            mesher,
             "input segments are not supported; give a point set",
         ));
     }
@@ -98,7 +97,7 @@ pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, 
     let root = input.bounding_hexagon();
     if !(root.circumradius > 0.0 && root.circumradius.is_finite()) {
         return Err(Error::mesher(
-            "hex-simple",
+            mesher,
             "the bounding hexagon has no positive finite radius",
         ));
     }
@@ -108,11 +107,22 @@ pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, 
         .position(|&p| !root.contains_strictly(p))
     {
         return Err(Error::mesher(
-            "hex-simple",
+            mesher,
             format!("point {i} does not lie strictly inside the bounding hexagon"),
         ));
     }
-    let mut h = Hierarchy::new(Lattice::new(root), input.points.clone(), params.budget);
+    Ok(Hierarchy::new(
+        Lattice::new(root),
+        input.points.clone(),
+        params.budget,
+    ))
+}
+
+/// Runs the simple refinement on a point set and returns the final hierarchy, with the reason
+/// it stopped early when a budget ran out. Errors: segments (not supported), points outside
+/// the bounding hexagon, points too close together for f64 (`InputError::Range`).
+pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<String>)> {
+    let mut h = new_hierarchy(input, params, "hex-simple")?;
     match refine::refine_simple(&mut h) {
         Ok(()) => Ok((h, None)),
         Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),

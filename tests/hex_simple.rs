@@ -165,3 +165,30 @@ fn the_hexagon_picture_draws_cells_the_dual_and_the_points() {
     // One polygon per triangle in the dual group, plus the cells and the root outline.
     assert!(svg.matches("<polygon").count() > run.mesh.triangles.len());
 }
+
+/// Two points 2e-7 apart in the unit hexagon need hexagons below the worst-case precision
+/// level: the hierarchy alone refuses them, while the mesher, which measures every output angle
+/// before trusting it, meshes them within the bounds (plane-1m needs exactly this).
+#[test]
+fn a_pair_below_the_worst_case_precision_level_is_meshed_after_measuring_its_angles() {
+    let input = Pslg {
+        points: vec![[-1e-7, 0.0], [1e-7, 0.0]],
+        hexagon: Some(Hexagon {
+            center: [0.0, 0.0],
+            circumradius: 1.0,
+        }),
+        ..Pslg::default()
+    };
+    let refused = hexmesh::hex::mesh_with_hierarchy(&input, &Params::default());
+    assert!(
+        matches!(
+            refused,
+            Err(hexmesh::Error::Input {
+                problem: hexmesh::InputError::Range { .. },
+                ..
+            })
+        ),
+        "the worst-case limit alone refuses this pair"
+    );
+    assert_simple_bounds(&input);
+}

@@ -61,7 +61,9 @@ impl Mesher for HexSimple {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let start = Instant::now();
-        let (h, stop) = mesh_with_hierarchy(input, params)?;
+        let mut h = new_hierarchy(input, params, "hex-simple")?;
+        h.allow_checked_levels();
+        let stop = run_simple(&mut h)?;
         let placement = if stop.is_none() {
             Placement::Relocated
         } else {
@@ -73,6 +75,9 @@ impl Mesher for HexSimple {
                 self.name(),
                 format!("internal error: dual triangle {t} is not counter-clockwise"),
             ));
+        }
+        if h.needs_angle_check() {
+            check_rounded_angles(&mesh)?;
         }
         Ok(MeshRun {
             mesh,
@@ -123,11 +128,39 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
 /// the bounding hexagon, points too close together for f64 (`InputError::Range`).
 pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<String>)> {
     let mut h = new_hierarchy(input, params, "hex-simple")?;
-    match refine::refine_simple(&mut h) {
-        Ok(()) => Ok((h, None)),
-        Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),
+    let stop = run_simple(&mut h)?;
+    Ok((h, stop))
+}
+
+/// Runs the simple refinement: `None` when it finished, the reason when a budget stopped it.
+fn run_simple(h: &mut Hierarchy) -> Result<Option<String>> {
+    match refine::refine_simple(h) {
+        Ok(()) => Ok(None),
+        Err(Stop::Budget(why)) => Ok(Some(format!("stopped by the {why}"))),
         Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
     }
+}
+
+/// The a-posteriori half of the precision rule: below the worst-case level limit every angle
+/// of the output is measured (as `quality` measures it) and the mesh is refused, as input too
+/// close for f64, when one misses [30°, 120°] by more than half the checks' 1e-6° slack.
+fn check_rounded_angles(mesh: &TriMesh) -> Result<()> {
+    let slack = crate::quality::ANGLE_SLACK_DEG / 2.0;
+    for t in 0..mesh.triangles.len() {
+        let [a, b, c] = mesh.corners(t);
+        for (p, q, r) in [(a, b, c), (b, c, a), (c, a, b)] {
+            let angle = crate::quality::angle_at(p, q, r);
+            if !(30.0 - slack..=120.0 + slack).contains(&angle) {
+                return Err(Error::input(InputError::Range {
+                    detail: format!(
+                        "the input points are too close together for this bounding hexagon: \
+                         rounding to f64 moves an angle of triangle {t} to {angle}°"
+                    ),
+                }));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// A finished `hex-simple` mesh that accepts further points and refines only around them
@@ -187,5 +220,32 @@ impl IncrementalHexSimple {
 
     pub fn hierarchy(&self) -> &Hierarchy {
         &self.hierarchy
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_rounding_check_refuses_an_angle_just_outside_the_slack() {
+        // A right triangle whose smallest angle is 30° minus about 1e-6°.
+        let tan = (30.0f64 - 1e-6).to_radians().tan();
+        let bad = TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [1.0, tan]],
+            triangles: vec![[0, 1, 2]],
+        };
+        assert!(matches!(
+            check_rounded_angles(&bad),
+            Err(Error::Input {
+                problem: InputError::Range { .. },
+                ..
+            })
+        ));
+        let good = TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 30f64.to_radians().tan()]],
+            triangles: vec![[0, 1, 2]],
+        };
+        assert!(check_rounded_angles(&good).is_ok());
     }
 }

@@ -63,8 +63,14 @@ pub struct Hierarchy {
     pub full_leaves: usize,
     budget: Budget,
     start: Instant,
-    /// The deepest level whose lattice positions f64 still separates.
+    /// The deepest level whose triangles f64 places within the angle tolerance in the worst
+    /// case (`level_limit`).
+    guaranteed_level: u8,
+    /// The deepest level refinement may reach: `guaranteed_level` plus `CHECKED_LEVELS` when
+    /// the caller checks the output's angles afterwards (`allow_checked_levels`).
     level_limit: u8,
+    /// The deepest level a hexagon has reached.
+    deepest: u8,
 }
 
 impl Hierarchy {
@@ -79,8 +85,11 @@ impl Hierarchy {
         // About seven subdivisions per point on uniform sets: reserving spares the rehashing of
         // tables that outgrow the caches.
         let expected = 8 * points.len() + 64;
+        let guaranteed = level_limit(&lattice);
         Hierarchy {
-            level_limit: level_limit(&lattice),
+            guaranteed_level: guaranteed,
+            level_limit: guaranteed,
+            deepest: 0,
             lattice,
             points,
             subdivided: FxHashSet::with_capacity_and_hasher(expected, Default::default()),
@@ -221,6 +230,7 @@ impl Hierarchy {
         debug_assert_eq!(self.cell(key), Cell::Full { subdivided: false });
         self.subdivided.insert(key);
         self.steps += 1;
+        self.deepest = self.deepest.max(key.k + 1);
         self.log.push(key);
         // The central child replaces `key` as a leaf; each edge child that is now full joined.
         for d in 0..6 {
@@ -253,6 +263,23 @@ impl Hierarchy {
         for d in 0..6 {
             self.work.push(key.neighbor(d));
         }
+    }
+
+    /// Lets refinement go `CHECKED_LEVELS` below the worst-case precision limit. The worst case
+    /// (`level_limit`) is rarely met, so a caller that measures every output angle afterwards
+    /// and refuses the mesh when one misses the tolerance (`needs_angle_check`) can mesh
+    /// closer points than the bound alone allows.
+    pub fn allow_checked_levels(&mut self) {
+        self.level_limit = self
+            .guaranteed_level
+            .saturating_add(CHECKED_LEVELS)
+            .min(MAX_LEVEL);
+    }
+
+    /// True when some hexagon lies below the worst-case precision limit, so the output's
+    /// angles must be measured before it is trusted.
+    pub fn needs_angle_check(&self) -> bool {
+        self.deepest > self.guaranteed_level
     }
 
     /// The time budget, checked now: for callers that do much work between subdivisions
@@ -435,6 +462,10 @@ impl Hierarchy {
         Ok(())
     }
 }
+
+/// Levels below `level_limit` that `allow_checked_levels` opens to a caller that checks the
+/// output's angles: each halves the hexagons, so the worst-case angle error could grow 8-fold.
+pub const CHECKED_LEVELS: u8 = 3;
 
 /// The deepest level whose triangles f64 can still place to the angle tolerance of the
 /// checks (DESIGN.md "Checks": 1e-6°). A constructed coordinate o + (r_0·X)·2^-(k+1) carries an

@@ -110,12 +110,25 @@ fn bad_input_and_unknown_meshers_are_refused_before_spawning() {
 }
 
 /// A stand-in child written as a shell script, to die in ways hexmesh itself does not.
+///
+/// The file is written by a separate `sh`, never through a descriptor of this process: a test
+/// thread that forks while this process holds the file open for writing would carry that
+/// descriptor into its child, and executing the script would then fail with "Text file busy"
+/// (ETXTBSY) — which is how CI once failed here.
 fn script(name: &str, body: &str) -> PathBuf {
-    use std::os::unix::fs::PermissionsExt;
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR"));
     let path = dir.join(name);
-    std::fs::write(&path, format!("#!/bin/sh\n{body}\n")).unwrap();
-    std::fs::set_permissions(&path, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let status = std::process::Command::new("sh")
+        .arg("-c")
+        .arg(
+            r#"printf '#!/bin/sh\n%s\n' "$1" > "$2.tmp" && chmod 755 "$2.tmp" && mv "$2.tmp" "$2""#,
+        )
+        .arg("sh")
+        .arg(body)
+        .arg(&path)
+        .status()
+        .unwrap();
+    assert!(status.success(), "writing {}", path.display());
     path
 }
 

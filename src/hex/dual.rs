@@ -13,7 +13,8 @@
 //! hexagons of a kept triangle are not subdivided further.
 
 use crate::geom::{orient2d, Point};
-use crate::hex::lattice::{FxHashMap, Key};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::mc3::Patch;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 
@@ -39,7 +40,19 @@ pub fn extract_moved(
     placement: Placement,
     moved: &FxHashMap<Key, Point>,
 ) -> (TriMesh, Vec<Key>) {
-    let mut b = Builder::new(h, placement, moved);
+    extract_patched(h, placement, moved, &Patch::default())
+}
+
+/// `extract_moved`, with the triangles around the centres `patch.dropped` replaced by
+/// `patch.triangles` (the MOVED_CENTER_3 topology of Sec. 5.4, `mc3`), which are emitted after
+/// the others in their order.
+pub fn extract_patched(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    patch: &Patch,
+) -> (TriMesh, Vec<Key>) {
+    let mut b = Builder::new(h, placement, moved, &patch.dropped);
     // Each entry carries whether its three hexagons are subdivided (outside counts as
     // subdivided), looked up once per distinct hexagon when the parent is split.
     let state = |c: Key| (c, h.is_subdivided_or_outside(c));
@@ -89,6 +102,9 @@ pub fn extract_moved(
             _ => b.emit(keys),
         }
     }
+    for &tri in &patch.triangles {
+        b.emit_patch(tri);
+    }
     b.finish()
 }
 
@@ -100,6 +116,8 @@ fn midpoint(a: Key, b: Key) -> Key {
 struct Builder<'a> {
     h: &'a Hierarchy,
     moved: &'a FxHashMap<Key, Point>,
+    /// Centres whose triangles the patch replaces.
+    dropped: &'a FxHashSet<Key>,
     /// Canonical key of each vertex.
     keys: Vec<Key>,
     /// Dual vertex of each canonical centre.
@@ -114,6 +132,7 @@ impl<'a> Builder<'a> {
         h: &'a Hierarchy,
         placement: Placement,
         moved: &'a FxHashMap<Key, Point>,
+        dropped: &'a FxHashSet<Key>,
     ) -> Builder<'a> {
         // About one vertex per full leaf and two triangles per vertex: reserving avoids
         // rehashing a table of millions of entries.
@@ -138,6 +157,7 @@ impl<'a> Builder<'a> {
         Builder {
             h,
             moved,
+            dropped,
             keys,
             index,
             vertices,
@@ -147,6 +167,13 @@ impl<'a> Builder<'a> {
     }
 
     fn emit(&mut self, tri: [Key; 3]) {
+        if !self.dropped.is_empty() && tri.iter().any(|c| self.dropped.contains(&c.canonical())) {
+            return;
+        }
+        self.emit_patch(tri);
+    }
+
+    fn emit_patch(&mut self, tri: [Key; 3]) {
         if tri.iter().all(|c| c.inside()) {
             let t = tri.map(|c| self.vertex(c));
             self.triangles.push(t);

@@ -47,6 +47,7 @@ use crate::hex::classify::{classify, rings, Class, Rings, Role};
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::mc3::{self, Patch};
 use crate::hex::refine::{drain, refine_simple};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
@@ -69,6 +70,9 @@ pub struct Hex;
 pub struct ExtendedStats {
     /// Subdivisions made by the extended rules of Sec. 5.2 (and the departures above).
     pub rule_splits: u64,
+    /// Of `rule_splits`, those made because a hexagon was MOVED_CENTER_3 (or the top or end
+    /// neighbour of MOVED_CENTER_3 hexagons, rules of Sec. 5.2).
+    pub mc3_splits: u64,
     /// Subdivisions made by the last-resort verification of the finished dual.
     pub verify_splits: u64,
     /// Contested ring cells (fixed for one point, moved for another) moved after all.
@@ -166,7 +170,7 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
                 break;
             }
             h.log.clear();
-            for key in actions {
+            for (key, why) in actions {
                 let before = h.steps;
                 match h.cell(key) {
                     Cell::Full { subdivided: false } => h.subdivide(key)?,
@@ -174,6 +178,9 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
                     _ => {}
                 }
                 stats.rule_splits += h.steps - before;
+                if why == Why::Mc3 {
+                    stats.mc3_splits += h.steps - before;
+                }
             }
             drain(h)?;
             candidates = around(&h.log);
@@ -186,8 +193,14 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
         }
         let bad = loop {
             h.check_time()?;
-            let moved = relocations(h, &r);
-            let (mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
+            let (moved, patch) = relocations(h, &r);
+            let (mesh, mut keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+            // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin.
+            for k in keys.iter_mut() {
+                if let Some(&owner) = patch.fin_owner.get(k) {
+                    *k = owner;
+                }
+            }
             let bad = offending_leaves(h, &mesh, &keys);
             if bad.is_empty() {
                 return Ok(mesh);
@@ -226,9 +239,9 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
+fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<(Key, Why)> {
     let r = rings(h);
-    let mut acts = r.conflicts.clone();
+    let mut acts: Vec<(Key, Why)> = r.conflicts.iter().map(|&k| (k, Why::Other)).collect();
     for &key in candidates {
         if !h.is_full_leaf(key) {
             continue;
@@ -238,15 +251,15 @@ fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
             continue;
         }
         // SUBDIVIDE, and MOVED_CENTER_3 (departure, module docs).
-        if matches!(class, Class::Subdivide | Class::MovedCenter3) {
-            acts.push(key);
+        if class == Class::Subdivide {
+            acts.push((key, Why::Other));
             continue;
         }
         // A moved centre in the 1-ring of OCCUPIED_1 or the 1- or 2-ring of OCCUPIED_2; and
         // (departure) a hexagon with fins centred on the boundary of the bounding hexagon,
         // whose centre cannot move inwards without spoiling the boundary triangles.
         if r.roles.contains_key(&key) || key.on_boundary() {
-            acts.push(key);
+            acts.push((key, Why::Other));
             continue;
         }
         // Every full hexagon adjacent to a fin must have a fixed centre.
@@ -261,15 +274,32 @@ fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
             ]
             .into_iter()
             .filter(|&c| h.is_full_leaf(c))
-            .all(|c| classify(h, &r, c).0.is_fixed())
+            .all(|c| classify(h, &r, c).0.is_fixed() && !mc3::is_mc4(h, &r, c))
         });
         if !fixed_beyond {
-            acts.push(key);
+            acts.push((key, Why::Other));
+            continue;
+        }
+        // The rules on MOVED_CENTER_3 hexagons and their top neighbour (Sec. 5.2, `mc3`).
+        if class == Class::MovedCenter3 {
+            acts.extend(
+                mc3::actions_for(h, &r, key)
+                    .into_iter()
+                    .map(|k| (k, Why::Mc3)),
+            );
         }
     }
     acts.sort();
-    acts.dedup();
+    acts.dedup_by_key(|a| a.0);
     acts
+}
+
+/// Which rule asked for a subdivision (for `ExtendedStats`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+enum Why {
+    /// A MOVED_CENTER_3 rule.
+    Mc3,
+    Other,
 }
 
 /// The cells whose extended rules can change when the hexagons `subdivided` are split: the
@@ -299,10 +329,12 @@ fn around(subdivided: &[Key]) -> Vec<Key> {
     out
 }
 
-/// The relocated centres of Sec. 5.4, keyed by `Key::canonical`. Occupied centres are replaced
-/// by their points in the dual builder.
-pub fn relocations(h: &Hierarchy, r: &Rings) -> FxHashMap<Key, Point> {
+/// The relocated centres of Sec. 5.4, keyed by `Key::canonical`, and the dual rebuilt around
+/// MOVED_CENTER_3 hexagons (`mc3`). Occupied centres are replaced by their points in the dual
+/// builder.
+pub fn relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch) {
     let mut moved = FxHashMap::default();
+    let mut mc3_keys = Vec::new();
     let lerp = |a: Point, b: Point, t: f64| [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t];
     for (key, cell) in h.leaves() {
         if cell != (Cell::Full { subdivided: false }) {
@@ -326,11 +358,19 @@ pub fn relocations(h: &Hierarchy, r: &Rings) -> FxHashMap<Key, Point> {
                 let m = Key::new(key.k + 1, a.i + b.i, a.j + b.j);
                 lerp(c, h.lattice.center(m), 2.0 / 5.0)
             }
+            (Class::MovedCenter3, _) => {
+                mc3_keys.push(key);
+                continue;
+            }
             _ => continue,
         };
         moved.insert(key.canonical(), p);
     }
-    moved
+    let mut patch = Patch::default();
+    for chain in mc3::chains(h, r, &mc3_keys) {
+        mc3::build(h, chain, &mut moved, &mut patch);
+    }
+    (moved, patch)
 }
 
 /// The leaf of the vertex with canonical key `key`: the end of its chain of central children.

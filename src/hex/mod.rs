@@ -16,6 +16,7 @@ pub mod dual;
 pub mod extended;
 pub mod fuzz;
 pub mod lattice;
+pub mod mc3;
 pub mod picture;
 pub mod refine;
 pub mod subdivision;

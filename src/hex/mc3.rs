@@ -1,0 +1,368 @@
+//! MOVED_CENTER_3 hexagons, their MOVED_CENTER_4 top neighbours and their dual topology,
+//! paper 000 Sec. 5.2 (the rules on MOVED_CENTER_3/4) and Sec. 5.4 ("Centers of single
+//! MOVED_CENTER_3-hexagons", "… consecutive …", "Centers of MOVED_CENTER_4-hexagons").
+//!
+//! # What the figures (missing from the text) had to supply
+//!
+//! A MOVED_CENTER_3 hexagon K of level k with fins in directions d, d+1, d+2 has subdivided
+//! neighbours N_0, N_1, N_2 = K + e_d, e_{d+1}, e_{d+2}; its top neighbour T = K + e_{d+4}, its
+//! left neighbour L = K + e_{d-1}, its right neighbour R = K + e_{d+3}. The fin f_m is the
+//! half, inside N_m, of the level-(k+1) cell on the edge K|N_m. The hexagon "h_{f_m}" beyond
+//! fin f_m is the central child of N_m (centre C_{N_m}); the two other full hexagons beside the
+//! fins are the level-(k+1) cells between N_0, N_1 and between N_1, N_2 (M_01, M_12, the
+//! "five FIXED_CENTER_x hexagons" of the text). Seen from T the MOVED_CENTER_3 hexagons that
+//! have T as top neighbour are T + e_j with fins at j-1, j, j+1; consecutive ones are
+//! consecutive directions around T, and two neighbours of a chain share the subdivided hexagon
+//! N_2 = N'_0 between them.
+//!
+//! The standard dual has, around K, the eight triangles of its star (L, N_0, M_01, N_1, M_12,
+//! N_2, R, T). For a chain of n MOVED_CENTER_3 hexagons around T the union of their stars is
+//! dropped and rebuilt (vertices named as above, chain K_0 … K_{n-1} counter-clockwise around
+//! T, f_{i,2} = f_{i+1,0} shared):
+//!
+//! - along the fins of each K_i: (N_0, M_01, f_0), (f_0, M_01, f_1), (M_01, N_1, f_1),
+//!   (N_1, M_12, f_1), (f_1, M_12, f_2), (M_12, N_2, f_2); at the ends (L, N_{0,0}, f_{0,0})
+//!   and (N_{n-1,2}, R, f_{n-1,2});
+//! - n = 1 (K dropped): (L, f_0, T), (f_0, f_2, T), (f_0, f_1, f_2), (f_2, R, T);
+//! - n ≥ 2 (centres kept): (L, f_{0,0}, K_0), (f_{i,0}, f_{i,1}, K_i), (f_{i,1}, f_{i,2}, K_i),
+//!   (f_{i,2}, K_{i+1}, K_i), (K_{i+1}, T, K_i), (f_{n-1,2}, R, K_{n-1}), (R, T, K_{n-1}),
+//!   (K_0, T, L); a blossom (n = 6) is the same ring closed on itself, 60 triangles.
+//!
+//! Positions are the paper's: single f_0 = 3/5·C + 2/5·C_{N_0}, f_1 = 2/5·C + 3/5·C_{N_1},
+//! f_2 = 3/5·C + 2/5·C_{N_2}; consecutive Ĉ = 2/3·C + 1/3·C_T, end fins 25/52·Ĉ + 27/52·C_N,
+//! middle fins 3/5·C + 2/5·C_{N_1}, shared fins 9/20·C_M + 11/20·C_N (C_M the mean of the two
+//! relocated centres); MOVED_CENTER_4 n = 1: 3/5·C_T + 2/5·C_K, n = 2: 5/4·C_T − 1/4·C_M,
+//! n = 3: 7/6·C_T − 1/6·C_{K_1}, n = 4: 4/3·C_T − 1/3·C_M, n = 6 (blossom): unmoved.
+//!
+//! Where the text leaves a choice open, the choice that meets [α, 90°] was taken, found by
+//! computing every angle (unit tests below and tests/hex_mc3.rs):
+//! - C_M of MOVED_CENTER_4 for n = 2 and 4 is the mean of the *relocated* centres (as for the
+//!   shared fins); with the lattice centres the triangles below T drop to 41.6° (n = 2) and to
+//!   40.9°/98.2° (n = 4). For n = 3 the formula names the lattice centre C_{K_1}, and that one
+//!   is right: the relocated one gives 43.17°.
+//! - The two fins at the common edge of consecutive MOVED_CENTER_3 hexagons ("the corresponding
+//!   neighbors coincide") are one vertex.
+//! - A single MOVED_CENTER_3 hexagon beside a MOVED_CENTER_2 one meets the bounds (min 43.9°,
+//!   max 83.4°), a chain beside one does not (34.2°, 109.2°): the Fig. 6 rule is applied to
+//!   chains only, on the end neighbour whose fin strip does not border the chain.
+//!
+//! Departures (all refine more than the paper):
+//! - The paper's formulas assume T is a plain hexagon (no fins, no point, in no ring, not on
+//!   the boundary) and the end neighbours are MOVED_CENTER_1 (or, for a single one, 2). When
+//!   they are not, the MOVED_CENTER_3 hexagons of that top are subdivided, as all of them were
+//!   before.
+//! - A MOVED_CENTER_4 hexagon counts as a moved centre in the rule "every full hexagon
+//!   adjacent to a fin must be FIXED_CENTER_x" (it is not FIXED, though Sec. 5.1 lists it
+//!   among the classes without fins).
+
+use crate::geom::Point;
+use crate::hex::classify::{classify, Class, Rings};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::subdivision::Hierarchy;
+
+/// Triangles of the dual rebuilt around MOVED_CENTER_3 hexagons (Sec. 5.4).
+#[derive(Debug, Clone, Default)]
+pub struct Patch {
+    /// Canonical keys of the centres whose triangles (their whole star) are dropped.
+    pub dropped: FxHashSet<Key>,
+    /// The triangles emitted instead, counter-clockwise, by cell keys; a vertex is placed like
+    /// any other (relocated position, input point, lattice centre).
+    pub triangles: Vec<[Key; 3]>,
+    /// The MOVED_CENTER_3 hexagon each fin vertex belongs to (the hexagon to subdivide when a
+    /// triangle at the fin fails).
+    pub fin_owner: FxHashMap<Key, Key>,
+}
+
+impl Patch {
+    pub fn is_empty(&self) -> bool {
+        self.dropped.is_empty() && self.triangles.is_empty()
+    }
+}
+
+/// A run of n consecutive MOVED_CENTER_3 hexagons T + e_s, …, T + e_{s+n-1} around their
+/// common top neighbour T (n = 6: a blossom).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Chain {
+    pub top: Key,
+    pub start: usize,
+    pub len: usize,
+}
+
+/// What the rules of Sec. 5.2 make of the MOVED_CENTER_3 hexagons around a top.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Verdict {
+    /// Not the top of any MOVED_CENTER_3 hexagon.
+    None,
+    /// A chain the dual can be built for.
+    Chain(Chain),
+    /// Hexagons to subdivide first.
+    Subdivide(Vec<Key>),
+}
+
+/// True when the full leaf `key` is MOVED_CENTER_3 with top neighbour `top`.
+fn is_mc3_below(h: &Hierarchy, r: &Rings, key: Key, top: Key) -> bool {
+    if !h.is_full_leaf(key) {
+        return false;
+    }
+    let (class, strip) = classify(h, r, key);
+    class == Class::MovedCenter3 && strip.is_some_and(|s| key.neighbor(s.top()) == top)
+}
+
+/// The directions j around `top` in which `top + e_j` is a MOVED_CENTER_3 hexagon whose top
+/// neighbour is `top`, as a bit mask.
+pub fn mc3_below(h: &Hierarchy, r: &Rings, top: Key) -> u8 {
+    (0..6)
+        .filter(|&j| is_mc3_below(h, r, top.neighbor(j), top))
+        .fold(0u8, |m, j| m | (1 << j))
+}
+
+/// True when `key` is MOVED_CENTER_4 (Sec. 5.1): a full leaf without fins, point or ring role
+/// that is the top neighbour of a MOVED_CENTER_3 hexagon.
+pub fn is_mc4(h: &Hierarchy, r: &Rings, key: Key) -> bool {
+    h.is_full_leaf(key)
+        && classify(h, r, key).0 == Class::FixedCenterRegular
+        && mc3_below(h, r, key) != 0
+}
+
+/// The cyclic runs of set bits of a 6-bit mask as (start, length); all six as (0, 6).
+fn runs(mask: u8) -> Vec<(usize, usize)> {
+    if mask == 0b11_1111 {
+        return vec![(0, 6)];
+    }
+    (0..6)
+        .filter(|&j| mask & (1 << j) != 0 && mask & (1 << ((j + 5) % 6)) == 0)
+        .map(|j| {
+            let len = (0..6)
+                .take_while(|&t| mask & (1 << ((j + t) % 6)) != 0)
+                .count();
+            (j, len)
+        })
+        .collect()
+}
+
+/// The rules of Sec. 5.2 on the MOVED_CENTER_3 hexagons whose top neighbour is `top`, with
+/// the departures of the module docs.
+pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
+    let mask = mc3_below(h, r, top);
+    if mask == 0 {
+        return Verdict::None;
+    }
+    let below: Vec<Key> = (0..6)
+        .filter(|&j| mask & (1 << j) != 0)
+        .map(|j| top.neighbor(j))
+        .collect();
+    let free = h.is_full_leaf(top)
+        && !top.on_boundary()
+        && classify(h, r, top).0 == Class::FixedCenterRegular;
+    if !free {
+        return Verdict::Subdivide(below);
+    }
+    let rs = runs(mask);
+    // "Subdivide a hexagon of type MOVED_CENTER_4 if it is the top neighbor of more than one
+    // non-consecutive hexagons of type MOVED_CENTER_3."
+    if rs.len() > 1 {
+        return Verdict::Subdivide(vec![top]);
+    }
+    let (start, len) = rs[0];
+    if len == 5 {
+        return Verdict::Subdivide(below);
+    }
+    let chain = Chain { top, start, len };
+    if len == 6 {
+        return Verdict::Chain(chain);
+    }
+    let mut far = Vec::new();
+    // The end neighbours: L = T + e_{s-1} with its fin towards T + e_s + e_{s-1}, R = T +
+    // e_{s+n} with its fin towards T + e_{s+n-1} + e_{s+n}.
+    for (end, chain_side) in [
+        (top.neighbor((start + 5) % 6), (start + 1) % 6),
+        (top.neighbor((start + len) % 6), (start + len + 4) % 6),
+    ] {
+        if !end.inside() || !h.is_full_leaf(end) || end.on_boundary() {
+            return Verdict::Subdivide(below);
+        }
+        match classify(h, r, end) {
+            (Class::MovedCenter1, _) => {}
+            (Class::MovedCenter2, _) if len == 1 => {}
+            // Fig. 6: a MOVED_CENTER_2 hexagon beside a chain; subdividing its neighbour
+            // beyond its fins (the one away from the chain) makes it MOVED_CENTER_3 of the
+            // same top.
+            (Class::MovedCenter2, Some(s)) => {
+                let beyond = if s.left() == chain_side {
+                    s.right()
+                } else {
+                    s.left()
+                };
+                far.push(end.neighbor(beyond));
+            }
+            _ => return Verdict::Subdivide(below),
+        }
+    }
+    if !far.is_empty() {
+        return Verdict::Subdivide(far);
+    }
+    Verdict::Chain(chain)
+}
+
+/// The valid chains of the current subdivision, sorted by top.
+pub fn chains(h: &Hierarchy, r: &Rings, mc3: &[Key]) -> Vec<Chain> {
+    let mut tops: Vec<Key> = mc3
+        .iter()
+        .filter_map(|&k| {
+            let (class, strip) = classify(h, r, k);
+            (class == Class::MovedCenter3).then_some(k.neighbor(strip?.top()))
+        })
+        .collect();
+    tops.sort();
+    tops.dedup();
+    tops.into_iter()
+        .filter_map(|t| match verdict(h, r, t) {
+            Verdict::Chain(c) => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+fn lerp(a: Point, b: Point, t: f64) -> Point {
+    [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t]
+}
+
+fn mid(a: Point, b: Point) -> Point {
+    lerp(a, b, 0.5)
+}
+
+/// The level-(k+1) cell between two adjacent cells of level k.
+fn between(a: Key, b: Key) -> Key {
+    Key::new(a.k + 1, a.i + b.i, a.j + b.j)
+}
+
+/// Adds the relocated centres (into `moved`, keyed canonically) and the rebuilt triangles of
+/// a chain (into `patch`), as the module docs derive them.
+pub fn build(h: &Hierarchy, c: Chain, moved: &mut FxHashMap<Key, Point>, patch: &mut Patch) {
+    let n = c.len;
+    let cyclic = n == 6;
+    let t = c.top;
+    let ct = h.lattice.center(t);
+    let ks: Vec<Key> = (0..n).map(|i| t.neighbor((c.start + i) % 6)).collect();
+    let cs: Vec<Point> = ks.iter().map(|&k| h.lattice.center(k)).collect();
+    // n[i][m]: the subdivided neighbour beyond fin m of K_i; fins[i][m] its fin cell.
+    let dir = |i: usize, m: usize| (c.start + i + 5 + m) % 6;
+    let nb: Vec<[Key; 3]> = (0..n)
+        .map(|i| [0, 1, 2].map(|m| ks[i].neighbor(dir(i, m))))
+        .collect();
+    let cn = |i: usize, m: usize| h.lattice.center(nb[i][m]);
+    // The shared fin of K_i and K_{i+1} is K_i's fin 2.
+    let fin = |i: usize, m: usize| -> Key {
+        if m == 0 && (cyclic || i > 0) {
+            let p = (i + n - 1) % n;
+            ks[p].edge_child(dir(p, 2))
+        } else {
+            ks[i].edge_child(dir(i, m))
+        }
+    };
+    for (i, &k) in ks.iter().enumerate() {
+        patch.dropped.insert(k.canonical());
+        for m in 0..3 {
+            patch.fin_owner.insert(fin(i, m), k);
+        }
+    }
+    let hat: Vec<Point> = if n == 1 {
+        cs.clone()
+    } else {
+        cs.iter().map(|&ck| lerp(ck, ct, 1.0 / 3.0)).collect()
+    };
+    let mut put = |key: Key, p: Point| {
+        moved.insert(key.canonical(), p);
+    };
+    if n == 1 {
+        put(fin(0, 0), lerp(cs[0], cn(0, 0), 2.0 / 5.0));
+        put(fin(0, 1), lerp(cs[0], cn(0, 1), 3.0 / 5.0));
+        put(fin(0, 2), lerp(cs[0], cn(0, 2), 2.0 / 5.0));
+        put(t, lerp(ct, cs[0], 2.0 / 5.0));
+    } else {
+        for i in 0..n {
+            put(ks[i], hat[i]);
+            put(fin(i, 1), lerp(cs[i], cn(i, 1), 2.0 / 5.0));
+            if cyclic || i + 1 < n {
+                let j = (i + 1) % n;
+                put(fin(i, 2), lerp(mid(hat[i], hat[j]), cn(i, 2), 11.0 / 20.0));
+            }
+        }
+        if !cyclic {
+            put(fin(0, 0), lerp(hat[0], cn(0, 0), 27.0 / 52.0));
+            put(fin(n - 1, 2), lerp(hat[n - 1], cn(n - 1, 2), 27.0 / 52.0));
+        }
+        let away =
+            |w: f64, from: Point| [ct[0] + w * (ct[0] - from[0]), ct[1] + w * (ct[1] - from[1])];
+        match n {
+            2 => put(t, away(0.25, mid(hat[0], hat[1]))),
+            3 => put(t, away(1.0 / 6.0, cs[1])),
+            4 => put(t, away(1.0 / 3.0, mid(hat[1], hat[2]))),
+            _ => {}
+        }
+    }
+    let tris = &mut patch.triangles;
+    for i in 0..n {
+        let [a, b, cc] = nb[i];
+        let (m01, m12) = (between(a, b), between(b, cc));
+        let (f0, f1, f2) = (fin(i, 0), fin(i, 1), fin(i, 2));
+        tris.extend([
+            [a, m01, f0],
+            [f0, m01, f1],
+            [m01, b, f1],
+            [b, m12, f1],
+            [f1, m12, f2],
+            [m12, cc, f2],
+        ]);
+    }
+    if !cyclic {
+        let l = t.neighbor((c.start + 5) % 6);
+        let r = t.neighbor((c.start + n) % 6);
+        tris.push([l, nb[0][0], fin(0, 0)]);
+        tris.push([nb[n - 1][2], r, fin(n - 1, 2)]);
+        if n == 1 {
+            let (f0, f1, f2) = (fin(0, 0), fin(0, 1), fin(0, 2));
+            tris.extend([[l, f0, t], [f0, f2, t], [f0, f1, f2], [f2, r, t]]);
+            return;
+        }
+        tris.push([l, fin(0, 0), ks[0]]);
+        tris.push([fin(n - 1, 2), r, ks[n - 1]]);
+        tris.push([r, t, ks[n - 1]]);
+        tris.push([ks[0], t, l]);
+    }
+    for i in 0..n {
+        tris.push([fin(i, 0), fin(i, 1), ks[i]]);
+        tris.push([fin(i, 1), fin(i, 2), ks[i]]);
+        if cyclic || i + 1 < n {
+            let j = (i + 1) % n;
+            tris.push([fin(i, 2), ks[j], ks[i]]);
+            tris.push([ks[j], t, ks[i]]);
+        }
+    }
+}
+
+/// Every hexagon whose subdivision the MOVED_CENTER_3 rules ask for, around the MOVED_CENTER_3
+/// hexagon `key` (its top's verdict).
+pub fn actions_for(h: &Hierarchy, r: &Rings, key: Key) -> Vec<Key> {
+    let (class, strip) = classify(h, r, key);
+    let Some(s) = strip.filter(|_| class == Class::MovedCenter3) else {
+        return Vec::new();
+    };
+    match verdict(h, r, key.neighbor(s.top())) {
+        Verdict::Subdivide(v) => v,
+        _ => Vec::new(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn runs_are_cyclic_and_six_is_one_blossom() {
+        assert_eq!(runs(0b00_0110), vec![(1, 2)]);
+        assert_eq!(runs(0b10_0001), vec![(5, 2)]);
+        assert_eq!(runs(0b00_0101), vec![(0, 1), (2, 1)]);
+        assert_eq!(runs(0b11_1111), vec![(0, 6)]);
+    }
+}

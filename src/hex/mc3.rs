@@ -171,6 +171,18 @@ pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
     if len == 6 {
         return Verdict::Chain(chain);
     }
+    // The neighbours of T outside the chain and its two ends stay where they are in the
+    // derivation; a moved one (a hexagon with fins, another top, a moved ring cell) spoils the
+    // triangles below T.
+    for t in len + 1..5 {
+        let y = top.neighbor((start + t) % 6);
+        let fixed = h.is_full_leaf(y)
+            && classify(h, r, y).0.is_fixed()
+            && mc3_below(h, r, y) == 0;
+        if !fixed {
+            return Verdict::Subdivide(below);
+        }
+    }
     let mut far = Vec::new();
     // The end neighbours: L = T + e_{s-1} with its fin towards T + e_s + e_{s-1}, R = T +
     // e_{s+n} with its fin towards T + e_{s+n-1} + e_{s+n}.
@@ -193,7 +205,12 @@ pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
                 } else {
                     s.left()
                 };
-                far.push(end.neighbor(beyond));
+                let f = end.neighbor(beyond);
+                // Beyond the bounding hexagon there is nothing to subdivide.
+                if !f.inside() {
+                    return Verdict::Subdivide(below);
+                }
+                far.push(f);
             }
             _ => return Verdict::Subdivide(below),
         }

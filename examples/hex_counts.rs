@@ -47,19 +47,21 @@ fn main() {
         let elapsed = t.elapsed();
         let s = &out.stats;
         println!(
-            "{name}: {} triangles (paper {}) in {:.3} s; splits: rules {} (MC3 {}), self-check {}, ring flips {}, rounds {}",
+            "{name}: {} triangles (paper {}) in {:.3} s; splits: rules {} (MC3 {}), self-check {} (rejected triangles at MC3 chains {}), ring flips {}, rounds {}",
             out.mesh.triangles.len(),
             paper(name),
             elapsed.as_secs_f64(),
             s.rule_splits,
             s.mc3_splits,
             s.verify_splits,
+            s.mc3_rejected,
             s.ring_flips,
             s.rounds
         );
         if let Some(seed) = hexmesh::datasets::default_seed(name) {
             let mut total = 0usize;
             let mut verify = 0u64;
+            let mut rejected = 0u64;
             for t in 0..10 {
                 let Ok(input) = hexmesh::datasets::random_with_seed(name, seed + t) else {
                     continue;
@@ -67,10 +69,11 @@ fn main() {
                 if let Ok(o) = mesh_extended(&input, &Params::default()) {
                     total += o.mesh.triangles.len();
                     verify += o.stats.verify_splits;
+                    rejected += o.stats.mc3_rejected;
                 }
             }
             println!(
-                "{name}: mean over seeds {seed}..{}: {:.0} triangles, self-check splits {verify}",
+                "{name}: mean over seeds {seed}..{}: {:.0} triangles, self-check splits {verify} (rejected at MC3 chains {rejected})",
                 seed + 9,
                 total as f64 / 10.0
             );

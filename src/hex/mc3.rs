@@ -71,6 +71,8 @@ pub struct Patch {
     /// The MOVED_CENTER_3 hexagon each fin vertex belongs to (the hexagon to subdivide when a
     /// triangle at the fin fails).
     pub fin_owner: FxHashMap<Key, Key>,
+    /// The MOVED_CENTER_3 hexagons and tops of the chains built.
+    pub chain_cells: FxHashSet<Key>,
 }
 
 impl Patch {
@@ -176,9 +178,7 @@ pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
     // triangles below T.
     for t in len + 1..5 {
         let y = top.neighbor((start + t) % 6);
-        let fixed = h.is_full_leaf(y)
-            && classify(h, r, y).0.is_fixed()
-            && mc3_below(h, r, y) == 0;
+        let fixed = h.is_full_leaf(y) && classify(h, r, y).0.is_fixed() && mc3_below(h, r, y) == 0;
         if !fixed {
             return Verdict::Subdivide(below);
         }
@@ -277,7 +277,9 @@ pub fn build(h: &Hierarchy, c: Chain, moved: &mut FxHashMap<Key, Point>, patch: 
             ks[i].edge_child(dir(i, m))
         }
     };
+    patch.chain_cells.insert(t);
     for (i, &k) in ks.iter().enumerate() {
+        patch.chain_cells.insert(k);
         patch.dropped.insert(k.canonical());
         for m in 0..3 {
             patch.fin_owner.insert(fin(i, m), k);

@@ -321,8 +321,7 @@ pub fn build(h: &Hierarchy, c: Chain, moved: &mut FxHashMap<Key, Point>, patch: 
         }
     }
     let tris = &mut patch.triangles;
-    for i in 0..n {
-        let [a, b, cc] = nb[i];
+    for (i, &[a, b, cc]) in nb.iter().enumerate() {
         let (m01, m12) = (between(a, b), between(b, cc));
         let (f0, f1, f2) = (fin(i, 0), fin(i, 1), fin(i, 2));
         tris.extend([

@@ -14,6 +14,7 @@
 
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, Key};
+use crate::hex::region::Region;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 
@@ -39,6 +40,29 @@ pub fn extract_moved(
     placement: Placement,
     moved: &FxHashMap<Key, Point>,
 ) -> (TriMesh, Vec<Key>) {
+    extract_where(h, placement, moved, |_| true)
+}
+
+/// The triangles of `extract_moved` that lie in lattice triangles touching `region` (with
+/// the vertices they use): the part of the dual a local change can have altered, found by
+/// descending only into the lattice triangles that touch the region.
+pub fn extract_region(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    region: &Region,
+) -> (TriMesh, Vec<Key>) {
+    extract_where(h, placement, moved, |tri| region.touches(tri))
+}
+
+/// The dual recursion, descending only into lattice triangles for which `keep` holds (it must
+/// hold for a triangle whenever it holds for one of its sub-triangles).
+fn extract_where(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    keep: impl Fn(&[Key; 3]) -> bool,
+) -> (TriMesh, Vec<Key>) {
     let mut b = Builder::new(h, placement, moved);
     // Each entry carries whether its three hexagons are subdivided (outside counts as
     // subdivided), looked up once per distinct hexagon when the parent is split.
@@ -59,6 +83,9 @@ pub fn extract_moved(
         }
         let sub = tri.map(|c| c.1);
         let keys = tri.map(|c| c.0);
+        if !keep(&keys) {
+            continue;
+        }
         match sub.iter().filter(|&&s| s).count() {
             3 => {
                 let [a, b2, c] = keys;

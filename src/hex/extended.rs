@@ -48,6 +48,7 @@ use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
 use crate::hex::refine::{drain, refine_simple};
+use crate::hex::region::{full_leaves_in, Region, REACH};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
@@ -75,6 +76,9 @@ pub struct ExtendedStats {
     pub ring_flips: u64,
     /// Rounds of rules-then-verification.
     pub rounds: u64,
+    /// Triangles the self-check examined, over all rounds (the whole dual once, then only
+    /// the neighbourhoods of changes).
+    pub checked_triangles: u64,
 }
 
 impl Mesher for Hex {
@@ -153,15 +157,74 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
 
 fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<TriMesh, Stop> {
     refine_simple(h)?;
-    let mut candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
-    // Contested ring cells whose centre moves after all, because keeping it fixed spoiled a
-    // triangle; each cell flips at most once, so the verification still terminates.
-    let mut flipped: FxHashSet<Key> = FxHashSet::default();
+    let candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
+    let mut flipped = FxHashSet::default();
+    match extend_and_verify(h, stats, &mut flipped, candidates, None)? {
+        Some(mesh) => Ok(mesh),
+        None => Ok(final_dual(h, &flipped)),
+    }
+}
+
+/// The relocated dual of the whole subdivision, with the contested ring cells in `flipped`
+/// moved (`extend_and_verify` has verified it).
+fn final_dual(h: &Hierarchy, flipped: &FxHashSet<Key>) -> TriMesh {
+    let r = rings_with_flips(h, flipped);
+    let moved = relocations(h, &r);
+    dual::extract_moved(h, Placement::Relocated, &moved).0
+}
+
+/// The rings of `h` with the contested cells in `flipped` given their moved role.
+fn rings_with_flips(h: &Hierarchy, flipped: &FxHashSet<Key>) -> Rings {
+    let mut r = rings(h);
+    let mut keys: Vec<Key> = flipped.iter().copied().collect();
+    keys.sort_unstable();
+    for key in keys {
+        if let Some(&alt) = r.contested.get(&key) {
+            r.roles.insert(key, alt);
+        }
+    }
+    r
+}
+
+/// The rings of the occupied hexagons, recomputed only when the set of occupied hexagons
+/// changed: the rule loop asks for them after every batch of subdivisions, and most batches
+/// (fins spreading outwards) do not touch an occupied hexagon.
+#[derive(Default)]
+struct RingCache {
+    occupied: Vec<Key>,
+    rings: Option<Rings>,
+}
+
+impl RingCache {
+    fn get(&mut self, h: &Hierarchy) -> &Rings {
+        let occupied = h.occupied_sorted();
+        if self.rings.is_none() || occupied != self.occupied {
+            self.rings = Some(rings(h));
+            self.occupied = occupied;
+        }
+        self.rings.get_or_insert_with(|| rings(h))
+    }
+}
+
+/// The extended rules on `candidates` to a fixed point, then the self-check of the dual,
+/// repeated until the dual meets every bound. With `changed == None` the first check covers
+/// the whole dual and, when it passes, that dual is returned; otherwise (and after any
+/// repair) only the triangles near the cells changed since the last complete check are
+/// checked (`region`), and `None` says that the whole dual now passes and is still to be
+/// extracted. `flipped` keeps the contested ring cells that were moved after all.
+pub(crate) fn extend_and_verify(
+    h: &mut Hierarchy,
+    stats: &mut ExtendedStats,
+    flipped: &mut FxHashSet<Key>,
+    mut candidates: Vec<Key>,
+    mut changed: Option<Vec<Key>>,
+) -> Result<Option<TriMesh>, Stop> {
+    let mut cache = RingCache::default();
     loop {
         stats.rounds += 1;
         loop {
             h.check_time()?;
-            let actions = extended_actions(h, &candidates);
+            let actions = extended_actions(h, cache.get(h), &candidates);
             if actions.is_empty() {
                 break;
             }
@@ -176,37 +239,56 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
                 stats.rule_splits += h.steps - before;
             }
             drain(h)?;
+            if let Some(c) = changed.as_mut() {
+                c.extend_from_slice(&h.log);
+            }
             candidates = around(&h.log);
         }
-        let mut r = rings(h);
-        for key in &flipped {
-            if let Some(&alt) = r.contested.get(key) {
-                r.roles.insert(*key, alt);
-            }
-        }
+        let mut r = rings_with_flips(h, flipped);
         let bad = loop {
             h.check_time()?;
-            let moved = relocations(h, &r);
-            let (mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
+            let (mesh, keys) = match &changed {
+                None => {
+                    let moved = relocations(h, &r);
+                    dual::extract_moved(h, Placement::Relocated, &moved)
+                }
+                Some(c) => {
+                    // Relocations reach a little further than the triangles checked, so that
+                    // every vertex of a checked triangle has its final place.
+                    let wide = Region::around(c, REACH + 3);
+                    let moved = relocations_of(h, &r, full_leaves_in(h, &wide));
+                    let region = Region::around(c, REACH);
+                    dual::extract_region(h, Placement::Relocated, &moved, &region)
+                }
+            };
+            stats.checked_triangles += mesh.triangles.len() as u64;
             let bad = offending_leaves(h, &mesh, &keys);
             if bad.is_empty() {
-                return Ok(mesh);
+                return Ok(if changed.is_none() { Some(mesh) } else { None });
             }
             // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
             // contested cells of the offending triangles take the moved role instead.
-            let flips: Vec<Key> = bad
+            let mut flips: Vec<Key> = bad
                 .iter()
                 .flat_map(|b| b.vertices.iter().copied())
                 .filter(|c| r.contested.contains_key(c) && !flipped.contains(c))
                 .collect();
+            flips.sort_unstable();
+            flips.dedup();
             if flips.is_empty() {
                 break bad;
             }
+            // The next check covers the flipped cells and every offending triangle, flipped
+            // or not, so that none is forgotten.
+            changed
+                .get_or_insert_with(Vec::new)
+                .extend(bad.iter().flat_map(|b| b.vertices.iter().copied()));
             for c in flips {
                 if let Some(&alt) = r.contested.get(&c) {
                     r.roles.insert(c, alt);
                 }
                 flipped.insert(c);
+                changed.get_or_insert_with(Vec::new).push(c);
                 stats.ring_flips += 1;
             }
         };
@@ -220,20 +302,20 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
             stats.verify_splits += h.steps - before;
         }
         drain(h)?;
+        changed.get_or_insert_with(Vec::new).extend_from_slice(&h.log);
         candidates = around(&h.log);
     }
 }
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
-    let r = rings(h);
+fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<Key> {
     let mut acts = r.conflicts.clone();
     for &key in candidates {
         if !h.is_full_leaf(key) {
             continue;
         }
-        let (class, strip) = classify(h, &r, key);
+        let (class, strip) = classify(h, r, key);
         if !class.has_fins() {
             continue;
         }
@@ -261,7 +343,7 @@ fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
             ]
             .into_iter()
             .filter(|&c| h.is_full_leaf(c))
-            .all(|c| classify(h, &r, c).0.is_fixed())
+            .all(|c| classify(h, r, c).0.is_fixed())
         });
         if !fixed_beyond {
             acts.push(key);
@@ -302,12 +384,23 @@ fn around(subdivided: &[Key]) -> Vec<Key> {
 /// The relocated centres of Sec. 5.4, keyed by `Key::canonical`. Occupied centres are replaced
 /// by their points in the dual builder.
 pub fn relocations(h: &Hierarchy, r: &Rings) -> FxHashMap<Key, Point> {
+    let leaves = h
+        .leaves()
+        .into_iter()
+        .filter(|&(_, cell)| cell == (Cell::Full { subdivided: false }))
+        .map(|(key, _)| key);
+    relocations_of(h, r, leaves)
+}
+
+/// The relocated centres of `relocations`, for the full leaves `leaves` only.
+pub fn relocations_of(
+    h: &Hierarchy,
+    r: &Rings,
+    leaves: impl IntoIterator<Item = Key>,
+) -> FxHashMap<Key, Point> {
     let mut moved = FxHashMap::default();
     let lerp = |a: Point, b: Point, t: f64| [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t];
-    for (key, cell) in h.leaves() {
-        if cell != (Cell::Full { subdivided: false }) {
-            continue;
-        }
+    for key in leaves {
         let c = h.lattice.center(key);
         let (class, strip) = classify(h, r, key);
         let p = match (class, strip) {

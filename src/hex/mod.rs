@@ -18,6 +18,7 @@ pub mod fuzz;
 pub mod lattice;
 pub mod picture;
 pub mod refine;
+pub mod region;
 pub mod subdivision;
 
 use std::time::Instant;

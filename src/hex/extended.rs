@@ -128,19 +128,23 @@ pub struct ExtendedRun {
     pub mesh: TriMesh,
     pub stop: Option<String>,
     pub stats: ExtendedStats,
+    /// The contested ring cells whose centre moved after all (see the module docs).
+    pub flipped: FxHashSet<Key>,
 }
 
 /// Runs the extended refinement and builds the relocated dual.
 pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
     let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
-    let outcome = refine_and_verify(&mut h, &mut stats);
+    let mut flipped = FxHashSet::default();
+    let outcome = refine_and_verify(&mut h, &mut stats, &mut flipped);
     match outcome {
         Ok(mesh) => Ok(ExtendedRun {
             hierarchy: h,
             mesh,
             stop: None,
             stats,
+            flipped,
         }),
         Err(Stop::Budget(why)) => {
             let mesh = dual::extract(&h, Placement::Plain);
@@ -149,25 +153,29 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
                 mesh,
                 stop: Some(format!("stopped by the {why}")),
                 stats,
+                flipped,
             })
         }
         Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
     }
 }
 
-fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<TriMesh, Stop> {
+fn refine_and_verify(
+    h: &mut Hierarchy,
+    stats: &mut ExtendedStats,
+    flipped: &mut FxHashSet<Key>,
+) -> Result<TriMesh, Stop> {
     refine_simple(h)?;
     let candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
-    let mut flipped = FxHashSet::default();
-    match extend_and_verify(h, stats, &mut flipped, candidates, None)? {
+    match extend_and_verify(h, stats, flipped, candidates, None)? {
         Some(mesh) => Ok(mesh),
-        None => Ok(final_dual(h, &flipped)),
+        None => Ok(final_dual(h, flipped)),
     }
 }
 
 /// The relocated dual of the whole subdivision, with the contested ring cells in `flipped`
 /// moved (`extend_and_verify` has verified it).
-fn final_dual(h: &Hierarchy, flipped: &FxHashSet<Key>) -> TriMesh {
+pub(crate) fn final_dual(h: &Hierarchy, flipped: &FxHashSet<Key>) -> TriMesh {
     let r = rings_with_flips(h, flipped);
     let moved = relocations(h, &r);
     dual::extract_moved(h, Placement::Relocated, &moved).0
@@ -302,7 +310,9 @@ pub(crate) fn extend_and_verify(
             stats.verify_splits += h.steps - before;
         }
         drain(h)?;
-        changed.get_or_insert_with(Vec::new).extend_from_slice(&h.log);
+        changed
+            .get_or_insert_with(Vec::new)
+            .extend_from_slice(&h.log);
         candidates = around(&h.log);
     }
 }
@@ -358,7 +368,7 @@ fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<Key> {
 /// next level around each (its children and the rings of a point moved into them), its own
 /// level (neighbours that got fins, rings that lost their point), and the level above (hexagons
 /// whose fins border those neighbours). Sorted, without duplicates.
-fn around(subdivided: &[Key]) -> Vec<Key> {
+pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
     let mut out = Vec::new();
     let mut disc = |c: Key, radius: i64| {
         for di in -radius..=radius {

@@ -266,6 +266,12 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
             }
         }
     }
+    if args.hexagons.is_some() && !matches!(mesher.name(), "hex-simple" | "hex") {
+        return Err(Error::Usage(format!(
+            "--hexagons draws the hexagon subdivision of hex-simple or hex, not of {}",
+            mesher.name()
+        )));
+    }
     let timeout = seconds("--timeout", args.timeout)?;
     let params = Params {
         min_angle: args.min_angle,
@@ -301,9 +307,10 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     if let Some(path) = &args.hexagons {
         match mesher.name() {
             "hex-simple" => crate::hex::write_hexagons_svg(&input, &params, path)?,
+            "hex" => crate::hex::picture::write_extended_hexagons_svg(&input, &params, path)?,
             other => {
                 return Err(Error::Usage(format!(
-                    "--hexagons draws the hexagon subdivision of hex-simple, not of {other}"
+                    "--hexagons draws the hexagon subdivision of hex-simple or hex, not of {other}"
                 )))
             }
         }

@@ -15,6 +15,7 @@
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
 use crate::hex::mc3::Patch;
+use crate::hex::region::Region;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 
@@ -40,7 +41,7 @@ pub fn extract_moved(
     placement: Placement,
     moved: &FxHashMap<Key, Point>,
 ) -> (TriMesh, Vec<Key>) {
-    extract_patched(h, placement, moved, &Patch::default())
+    extract_where(h, placement, moved, &Patch::default(), |_| true)
 }
 
 /// `extract_moved`, with the triangles around the centres `patch.dropped` replaced by
@@ -51,6 +52,45 @@ pub fn extract_patched(
     placement: Placement,
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
+) -> (TriMesh, Vec<Key>) {
+    extract_where(h, placement, moved, patch, |_| true)
+}
+
+/// The triangles of `extract_moved` that lie in lattice triangles touching `region` (with
+/// the vertices they use): the part of the dual a local change can have altered, found by
+/// descending only into the lattice triangles that touch the region.
+pub fn extract_region(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    region: &Region,
+) -> (TriMesh, Vec<Key>) {
+    extract_where(h, placement, moved, &Patch::default(), |tri| {
+        region.touches(tri)
+    })
+}
+
+/// `extract_region` of `extract_patched`: the patch triangles with a cell in the region are
+/// kept with the others.
+pub fn extract_region_patched(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    patch: &Patch,
+    region: &Region,
+) -> (TriMesh, Vec<Key>) {
+    extract_where(h, placement, moved, patch, |tri| region.touches(tri))
+}
+
+/// The dual recursion, descending only into lattice triangles for which `keep` holds (it must
+/// hold for a triangle whenever it holds for one of its sub-triangles), with the triangles of
+/// `patch` in place of those around `patch.dropped`.
+fn extract_where(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    patch: &Patch,
+    keep: impl Fn(&[Key; 3]) -> bool,
 ) -> (TriMesh, Vec<Key>) {
     let mut b = Builder::new(h, placement, moved, &patch.dropped);
     // Each entry carries whether its three hexagons are subdivided (outside counts as
@@ -72,6 +112,9 @@ pub fn extract_patched(
         }
         let sub = tri.map(|c| c.1);
         let keys = tri.map(|c| c.0);
+        if !keep(&keys) {
+            continue;
+        }
         match sub.iter().filter(|&&s| s).count() {
             3 => {
                 let [a, b2, c] = keys;
@@ -102,8 +145,8 @@ pub fn extract_patched(
             _ => b.emit(keys),
         }
     }
-    for &tri in &patch.triangles {
-        b.emit_patch(tri);
+    for tri in patch.triangles.iter().filter(|t| keep(t)) {
+        b.emit_patch(*tri);
     }
     b.finish()
 }

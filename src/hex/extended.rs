@@ -54,6 +54,7 @@ use crate::hex::fuzz::angle_deg;
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
 use crate::hex::mc3::{self, Patch};
 use crate::hex::refine::{drain, refine_simple};
+use crate::hex::region::{full_leaves_in, Region, REACH};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
@@ -87,6 +88,9 @@ pub struct ExtendedStats {
     pub ring_flips: u64,
     /// Rounds of rules-then-verification.
     pub rounds: u64,
+    /// Triangles the self-check examined, over all rounds (the whole dual once, then only
+    /// the neighbourhoods of changes).
+    pub checked_triangles: u64,
 }
 
 impl Mesher for Hex {
@@ -136,19 +140,23 @@ pub struct ExtendedRun {
     pub mesh: TriMesh,
     pub stop: Option<String>,
     pub stats: ExtendedStats,
+    /// The contested ring cells whose centre moved after all (see the module docs).
+    pub flipped: FxHashSet<Key>,
 }
 
 /// Runs the extended refinement and builds the relocated dual.
 pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
     let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
-    let outcome = refine_and_verify(&mut h, &mut stats);
+    let mut flipped = FxHashSet::default();
+    let outcome = refine_and_verify(&mut h, &mut stats, &mut flipped);
     match outcome {
         Ok(mesh) => Ok(ExtendedRun {
             hierarchy: h,
             mesh,
             stop: None,
             stats,
+            flipped,
         }),
         Err(Stop::Budget(why)) => {
             let mesh = dual::extract(&h, Placement::Plain);
@@ -157,23 +165,86 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
                 mesh,
                 stop: Some(format!("stopped by the {why}")),
                 stats,
+                flipped,
             })
         }
         Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
     }
 }
 
-fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<TriMesh, Stop> {
+fn refine_and_verify(
+    h: &mut Hierarchy,
+    stats: &mut ExtendedStats,
+    flipped: &mut FxHashSet<Key>,
+) -> Result<TriMesh, Stop> {
     refine_simple(h)?;
-    let mut candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
-    // Contested ring cells whose centre moves after all, because keeping it fixed spoiled a
-    // triangle; each cell flips at most once, so the verification still terminates.
-    let mut flipped: FxHashSet<Key> = FxHashSet::default();
+    let candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
+    match extend_and_verify(h, stats, flipped, candidates, None)? {
+        Some(mesh) => Ok(mesh),
+        None => Ok(final_dual(h, flipped)),
+    }
+}
+
+/// The relocated dual of the whole subdivision, with the contested ring cells in `flipped`
+/// moved (`extend_and_verify` has verified it).
+pub(crate) fn final_dual(h: &Hierarchy, flipped: &FxHashSet<Key>) -> TriMesh {
+    let r = rings_with_flips(h, flipped);
+    let (moved, patch) = relocations(h, &r);
+    dual::extract_patched(h, Placement::Relocated, &moved, &patch).0
+}
+
+/// The rings of `h` with the contested cells in `flipped` given their moved role.
+fn rings_with_flips(h: &Hierarchy, flipped: &FxHashSet<Key>) -> Rings {
+    let mut r = rings(h);
+    let mut keys: Vec<Key> = flipped.iter().copied().collect();
+    keys.sort_unstable();
+    for key in keys {
+        if let Some(&alt) = r.contested.get(&key) {
+            r.roles.insert(key, alt);
+        }
+    }
+    r
+}
+
+/// The rings of the occupied hexagons, recomputed only when the set of occupied hexagons
+/// changed: the rule loop asks for them after every batch of subdivisions, and most batches
+/// (fins spreading outwards) do not touch an occupied hexagon.
+#[derive(Default)]
+struct RingCache {
+    occupied: Vec<Key>,
+    rings: Option<Rings>,
+}
+
+impl RingCache {
+    fn get(&mut self, h: &Hierarchy) -> &Rings {
+        let occupied = h.occupied_sorted();
+        if self.rings.is_none() || occupied != self.occupied {
+            self.rings = Some(rings(h));
+            self.occupied = occupied;
+        }
+        self.rings.get_or_insert_with(|| rings(h))
+    }
+}
+
+/// The extended rules on `candidates` to a fixed point, then the self-check of the dual,
+/// repeated until the dual meets every bound. With `changed == None` the first check covers
+/// the whole dual and, when it passes, that dual is returned; otherwise (and after any
+/// repair) only the triangles near the cells changed since the last complete check are
+/// checked (`region`), and `None` says that the whole dual now passes and is still to be
+/// extracted. `flipped` keeps the contested ring cells that were moved after all.
+pub(crate) fn extend_and_verify(
+    h: &mut Hierarchy,
+    stats: &mut ExtendedStats,
+    flipped: &mut FxHashSet<Key>,
+    mut candidates: Vec<Key>,
+    mut changed: Option<Vec<Key>>,
+) -> Result<Option<TriMesh>, Stop> {
+    let mut cache = RingCache::default();
     loop {
         stats.rounds += 1;
         loop {
             h.check_time()?;
-            let actions = extended_actions(h, &candidates);
+            let actions = extended_actions(h, cache.get(h), &candidates);
             if actions.is_empty() {
                 break;
             }
@@ -191,18 +262,38 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
                 }
             }
             drain(h)?;
+            if let Some(c) = changed.as_mut() {
+                c.extend_from_slice(&h.log);
+            }
             candidates = around(&h.log);
         }
-        let mut r = rings(h);
-        for key in &flipped {
-            if let Some(&alt) = r.contested.get(key) {
-                r.roles.insert(*key, alt);
-            }
-        }
+        let mut r = rings_with_flips(h, flipped);
         let bad = loop {
             h.check_time()?;
-            let (moved, patch) = relocations(h, &r);
-            let (mesh, mut keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+            let (mesh, mut keys, patch) = match &changed {
+                None => {
+                    let (moved, patch) = relocations(h, &r);
+                    let (mesh, keys) =
+                        dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+                    (mesh, keys, patch)
+                }
+                Some(c) => {
+                    // Relocations reach a little further than the triangles checked, so that
+                    // every vertex of a checked triangle has its final place.
+                    let wide = Region::around(c, REACH + 3);
+                    let (moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
+                    let region = Region::around(c, REACH);
+                    let (mesh, keys) = dual::extract_region_patched(
+                        h,
+                        Placement::Relocated,
+                        &moved,
+                        &patch,
+                        &region,
+                    );
+                    (mesh, keys, patch)
+                }
+            };
+            stats.checked_triangles += mesh.triangles.len() as u64;
             // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin.
             for k in keys.iter_mut() {
                 if let Some(&owner) = patch.fin_owner.get(k) {
@@ -215,23 +306,31 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
                 .filter(|b| b.vertices.iter().any(|v| patch.chain_cells.contains(v)))
                 .count() as u64;
             if bad.is_empty() {
-                return Ok(mesh);
+                return Ok(if changed.is_none() { Some(mesh) } else { None });
             }
             // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
             // contested cells of the offending triangles take the moved role instead.
-            let flips: Vec<Key> = bad
+            let mut flips: Vec<Key> = bad
                 .iter()
                 .flat_map(|b| b.vertices.iter().copied())
                 .filter(|c| r.contested.contains_key(c) && !flipped.contains(c))
                 .collect();
+            flips.sort_unstable();
+            flips.dedup();
             if flips.is_empty() {
                 break bad;
             }
+            // The next check covers the flipped cells and every offending triangle, flipped
+            // or not, so that none is forgotten.
+            changed
+                .get_or_insert_with(Vec::new)
+                .extend(bad.iter().flat_map(|b| b.vertices.iter().copied()));
             for c in flips {
                 if let Some(&alt) = r.contested.get(&c) {
                     r.roles.insert(c, alt);
                 }
                 flipped.insert(c);
+                changed.get_or_insert_with(Vec::new).push(c);
                 stats.ring_flips += 1;
             }
         };
@@ -245,20 +344,22 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
             stats.verify_splits += h.steps - before;
         }
         drain(h)?;
+        changed
+            .get_or_insert_with(Vec::new)
+            .extend_from_slice(&h.log);
         candidates = around(&h.log);
     }
 }
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<(Key, Why)> {
-    let r = rings(h);
+fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
     let mut acts: Vec<(Key, Why)> = r.conflicts.iter().map(|&k| (k, Why::Other)).collect();
     for &key in candidates {
         if !h.is_full_leaf(key) {
             continue;
         }
-        let (class, strip) = classify(h, &r, key);
+        let (class, strip) = classify(h, r, key);
         if !class.has_fins() {
             continue;
         }
@@ -286,7 +387,7 @@ fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<(Key, Why)> {
             ]
             .into_iter()
             .filter(|&c| h.is_full_leaf(c))
-            .all(|c| classify(h, &r, c).0.is_fixed() && !mc3::is_mc4(h, &r, c))
+            .all(|c| classify(h, r, c).0.is_fixed() && !mc3::is_mc4(h, r, c))
         });
         if !fixed_beyond {
             acts.push((key, Why::Other));
@@ -295,7 +396,7 @@ fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<(Key, Why)> {
         // The rules on MOVED_CENTER_3 hexagons and their top neighbour (Sec. 5.2, `mc3`).
         if class == Class::MovedCenter3 {
             acts.extend(
-                mc3::actions_for(h, &r, key)
+                mc3::actions_for(h, r, key)
                     .into_iter()
                     .map(|k| (k, Why::Mc3)),
             );
@@ -318,7 +419,7 @@ enum Why {
 /// next level around each (its children and the rings of a point moved into them), its own
 /// level (neighbours that got fins, rings that lost their point), and the level above (hexagons
 /// whose fins border those neighbours). Sorted, without duplicates.
-fn around(subdivided: &[Key]) -> Vec<Key> {
+pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
     let mut out = Vec::new();
     let mut disc = |c: Key, radius: i64| {
         for di in -radius..=radius {
@@ -345,13 +446,25 @@ fn around(subdivided: &[Key]) -> Vec<Key> {
 /// MOVED_CENTER_3 hexagons (`mc3`). Occupied centres are replaced by their points in the dual
 /// builder.
 pub fn relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch) {
+    let leaves = h
+        .leaves()
+        .into_iter()
+        .filter(|&(_, cell)| cell == (Cell::Full { subdivided: false }))
+        .map(|(key, _)| key);
+    relocations_of(h, r, leaves)
+}
+
+/// The relocated centres and the MOVED_CENTER_3 patch of `relocations`, for the full leaves
+/// `leaves` only (chains are built for the MOVED_CENTER_3 hexagons among them).
+pub fn relocations_of(
+    h: &Hierarchy,
+    r: &Rings,
+    leaves: impl IntoIterator<Item = Key>,
+) -> (FxHashMap<Key, Point>, Patch) {
     let mut moved = FxHashMap::default();
     let mut mc3_keys = Vec::new();
     let lerp = |a: Point, b: Point, t: f64| [a[0] + (b[0] - a[0]) * t, a[1] + (b[1] - a[1]) * t];
-    for (key, cell) in h.leaves() {
-        if cell != (Cell::Full { subdivided: false }) {
-            continue;
-        }
+    for key in leaves {
         let c = h.lattice.center(key);
         let (class, strip) = classify(h, r, key);
         let p = match (class, strip) {

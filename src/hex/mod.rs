@@ -15,10 +15,12 @@ pub mod classify;
 pub mod dual;
 pub mod extended;
 pub mod fuzz;
+pub mod incremental;
 pub mod lattice;
 pub mod mc3;
 pub mod picture;
 pub mod refine;
+pub mod region;
 pub mod subdivision;
 
 use std::time::Instant;
@@ -30,6 +32,7 @@ use crate::mesher::{MeshRun, Mesher, Params};
 
 pub use dual::Placement;
 pub use fuzz::{fuzz_campaign, FuzzFailure, FuzzSummary};
+pub use incremental::IncrementalHex;
 pub use lattice::{Key, Lattice};
 pub use picture::{write_hexagons_svg, write_hierarchy_svg};
 pub use refine::{insert_points, InsertError};
@@ -164,6 +167,39 @@ fn check_rounded_angles(mesh: &TriMesh) -> Result<()> {
     Ok(())
 }
 
+/// The error of a failed insertion into a finished mesh of the mesher `mesher`.
+pub(crate) fn insert_error(mesher: &str, e: InsertError) -> Error {
+    match e {
+        InsertError::NonFinite { point } => Error::mesher(
+            mesher,
+            format!("added point ({}, {}) is not finite", point[0], point[1]),
+        ),
+        InsertError::Outside { point } => Error::mesher(
+            mesher,
+            format!(
+                "added point ({}, {}) does not lie strictly inside the bounding hexagon",
+                point[0], point[1]
+            ),
+        ),
+        InsertError::Duplicate { point, existing } => Error::mesher(
+            mesher,
+            format!(
+                "added point ({}, {}) duplicates point {existing}",
+                point[0], point[1]
+            ),
+        ),
+        InsertError::Stopped(stop) => stop_error(mesher, stop),
+    }
+}
+
+/// The error of a refinement stopped by a budget or by the precision limit.
+pub(crate) fn stop_error(mesher: &str, stop: Stop) -> Error {
+    match stop {
+        Stop::Budget(why) => Error::mesher(mesher, format!("stopped by the {why}")),
+        Stop::Precision(detail) => Error::input(InputError::Range { detail }),
+    }
+}
+
 /// A finished `hex-simple` mesh that accepts further points and refines only around them
 /// (paper 000 Sec. 1 and 9). The bounding hexagon stays the one of the first input, so added
 /// points must lie strictly inside it.
@@ -185,32 +221,7 @@ impl IncrementalHexSimple {
 
     /// Adds points and refines locally. Returns the vertex indices they got in `mesh()`.
     pub fn insert(&mut self, points: &[Point]) -> Result<Vec<u32>> {
-        insert_points(&mut self.hierarchy, points).map_err(|e| match e {
-            InsertError::NonFinite { point } => Error::mesher(
-                "hex-simple",
-                format!("added point ({}, {}) is not finite", point[0], point[1]),
-            ),
-            InsertError::Outside { point } => Error::mesher(
-                "hex-simple",
-                format!(
-                    "added point ({}, {}) does not lie strictly inside the bounding hexagon",
-                    point[0], point[1]
-                ),
-            ),
-            InsertError::Duplicate { point, existing } => Error::mesher(
-                "hex-simple",
-                format!(
-                    "added point ({}, {}) duplicates point {existing}",
-                    point[0], point[1]
-                ),
-            ),
-            InsertError::Stopped(Stop::Budget(why)) => {
-                Error::mesher("hex-simple", format!("stopped by the {why}"))
-            }
-            InsertError::Stopped(Stop::Precision(detail)) => {
-                Error::input(InputError::Range { detail })
-            }
-        })
+        insert_points(&mut self.hierarchy, points).map_err(|e| insert_error("hex-simple", e))
     }
 
     /// The current mesh: input point i (first the initial points, then the added ones in

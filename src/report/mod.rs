@@ -16,6 +16,7 @@ pub mod progress;
 pub mod readme;
 pub mod row;
 mod run;
+pub mod seeds;
 pub mod stats;
 pub mod table1;
 
@@ -102,6 +103,7 @@ pub fn is_generated_file(name: &str) -> bool {
         "results.csv",
         "maxangle.csv",
         "lsb.csv",
+        "seeds.csv",
         "table1.md",
         "README.md",
     ];

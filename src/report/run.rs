@@ -57,8 +57,19 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         .filter(|(n, _)| opts.max_angle && paper_row(n).is_some())
         .collect();
     let lsb_step = usize::from(meshers.iter().any(|m| m.name() == "lsb"));
-    let total =
-        (inputs.len() * meshers.len() + table_inputs.len() * references.len() + lsb_step) as u64;
+    let seed_steps = inputs
+        .iter()
+        .filter(|(n, _)| opts.max_angle && datasets::default_seed(n).is_some())
+        .count()
+        * meshers
+            .iter()
+            .filter(|m| super::seeds::COUNTED.contains(&m.name()))
+            .count()
+        * super::seeds::SEEDS as usize;
+    let total = (inputs.len() * meshers.len()
+        + table_inputs.len() * references.len()
+        + lsb_step
+        + seed_steps) as u64;
     let mut progress = Progress::new(total);
     let mut rows: Vec<Row> = Vec::new();
     let mut art = Artifacts::default();
@@ -135,13 +146,37 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
     }
 
     let mesher_names: Vec<String> = meshers.iter().map(|m| m.name().to_string()).collect();
-    let table = table1::render(
+    // Counts over seeds belong to Table 1 and are skipped with it (`--no-max-angle`).
+    let seed_datasets: Vec<String> = if opts.max_angle {
+        inputs.iter().map(|(n, _)| n.clone()).collect()
+    } else {
+        Vec::new()
+    };
+    let mut last_label = String::new();
+    let seed_rows =
+        super::seeds::seed_rows(&exe, &seed_datasets, &mesher_names, opts.timeout, |label| {
+            if !last_label.is_empty() {
+                progress.finish_step(&last_label);
+            }
+            progress.start(label);
+            last_label = label.to_string();
+        });
+    if !last_label.is_empty() {
+        progress.finish_step(&last_label);
+    }
+    write_csv(
+        &opts.out.join("seeds.csv"),
+        super::seeds::SEED_COLUMNS,
+        &seed_rows,
+    )?;
+    let mut table = table1::render(
         &rows,
         &max_angles,
         &mesher_names,
         REFERENCES,
         REFERENCE_MIN_ANGLE,
     );
+    table.push_str(&super::seeds::render(&seed_rows));
     write_text(&opts.out.join("table1.md"), &table)?;
     let facts = RunFacts {
         runs: opts.runs,

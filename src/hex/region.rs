@@ -1,0 +1,144 @@
+//! A neighbourhood of changed hexagons, for work proportional to what changes (paper 000
+//! Sec. 8 names the O(n²) refinement loop of its prototype as the obstacle; Sec. 1 and 9 the
+//! incremental insertion of points).
+//!
+//! After a first complete pass, the extended refinement only changes the subdivision around
+//! a few hexagons (the ones a rule or the self-check subdivided, the ring cells that flipped,
+//! the hexagons that received an added point). Classes and relocated centres (Sec. 5.1, 5.4)
+//! depend on cells at most a few lattice steps away, so the triangles that can change lie
+//! within a fixed lattice distance of a changed cell, at every level. A `Region` holds, for
+//! every level, the cells within that distance of the ancestors of the changed cells, and
+//! answers whether a lattice triangle of the dual recursion (`dual`) or a leaf may be
+//! affected; everything else is known not to have changed.
+
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::subdivision::{Cell, Hierarchy};
+
+/// How far (in cells of their own level) the class, the relocated centre and the triangles
+/// of a cell reach: fins and the fixed hexagons beyond them (2), the 2-ring of an occupied
+/// hexagon (2), the top neighbour and consecutive runs of MOVED_CENTER_3 hexagons (2), and
+/// the triangles around a relocated centre (1); 2 more cover the rounding of ancestors.
+pub const REACH: i64 = 8;
+
+/// The cells near a set of changed cells, level by level.
+#[derive(Debug, Clone, Default)]
+pub struct Region {
+    near: FxHashSet<Key>,
+    /// Two levels below the finest changed cell, plus one: below it nothing changed.
+    depth: u8,
+}
+
+impl Region {
+    /// The cells within `reach` of the ancestors, at every level, of `changed`, and of the
+    /// cells up to two levels finer (a subdivision creates children).
+    pub fn around(changed: &[Key], reach: i64) -> Region {
+        let mut anchors: FxHashMap<u8, FxHashSet<(i64, i64)>> = FxHashMap::default();
+        let mut depth = 0;
+        for &c in changed {
+            // Two levels finer than the changed cell: its children, and the leaves beside
+            // them, which balancing keeps within one level of them.
+            let finest = c.central_child().central_child();
+            depth = depth.max(finest.k + 1);
+            for k in 0..=finest.k {
+                let s = finest.k - k;
+                anchors
+                    .entry(k)
+                    .or_default()
+                    .insert((finest.i.div_euclid(1 << s), finest.j.div_euclid(1 << s)));
+            }
+        }
+        let mut levels: Vec<u8> = anchors.keys().copied().collect();
+        levels.sort_unstable();
+        let mut near = FxHashSet::default();
+        for k in levels {
+            let mut cells: Vec<(i64, i64)> = anchors[&k].iter().copied().collect();
+            cells.sort_unstable();
+            for (i, j) in cells {
+                for di in -reach..=reach {
+                    for dj in -reach..=reach {
+                        if (di + dj).abs() <= reach {
+                            near.insert(Key::new(k, i + di, j + dj));
+                        }
+                    }
+                }
+            }
+        }
+        Region { near, depth }
+    }
+
+    /// True when `key` lies within the region at its own level.
+    pub fn contains(&self, key: Key) -> bool {
+        key.k < self.depth && self.near.contains(&key)
+    }
+
+    /// True when a lattice triangle of the dual recursion may hold changed triangles: one of
+    /// its cells is in the region at its level.
+    pub fn touches(&self, tri: &[Key; 3]) -> bool {
+        tri.iter().any(|&c| self.contains(c))
+    }
+
+    /// The number of cells held, over all levels (a measure of the work done).
+    pub fn len(&self) -> usize {
+        self.near.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.near.is_empty()
+    }
+}
+
+/// The full leaves of `h` inside `region`, sorted: the descent of `Hierarchy::leaves`, pruned
+/// to subdivided cells in the region (a leaf in the region has its parent there too, since
+/// the region holds the ancestors of its cells with a margin).
+pub fn full_leaves_in(h: &Hierarchy, region: &Region) -> Vec<Key> {
+    let mut out = Vec::new();
+    let mut seen: FxHashSet<Key> = FxHashSet::default();
+    let mut stack = vec![Key::ROOT];
+    while let Some(key) = stack.pop() {
+        if !h.is_subdivided(key) {
+            continue;
+        }
+        for c in key.children() {
+            if !region.contains(c) {
+                continue;
+            }
+            match h.cell(c) {
+                Cell::Full { subdivided: true } if seen.insert(c) => stack.push(c),
+                Cell::Full { subdivided: false } if c.inside() => out.push(c),
+                _ => {}
+            }
+        }
+    }
+    if !h.is_subdivided(Key::ROOT) {
+        out.push(Key::ROOT);
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_region_holds_the_ancestors_of_a_changed_cell_at_every_level_with_their_discs() {
+        let changed = Key::new(5, 13, -7);
+        let r = Region::around(&[changed], 2);
+        assert!(r.contains(changed));
+        assert!(r.contains(changed.central_child()));
+        assert!(r.contains(Key::new(5, 15, -7)));
+        assert!(!r.contains(Key::new(5, 16, -7)), "outside the disc of radius 2");
+        assert!(r.contains(Key::new(0, 0, 0)));
+        assert!(r.contains(Key::new(3, 3, -2)));
+        assert!(r.contains(Key::new(7, 52, -28)));
+        assert!(!r.contains(Key::new(8, 104, -56)), "three levels below the changed cell");
+    }
+
+    #[test]
+    fn an_empty_region_touches_nothing() {
+        let r = Region::around(&[], REACH);
+        assert!(r.is_empty());
+        assert!(!r.touches(&[Key::ROOT, Key::ROOT.neighbor(0), Key::ROOT.neighbor(1)]));
+    }
+}

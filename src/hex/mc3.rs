@@ -58,6 +58,7 @@
 use crate::geom::Point;
 use crate::hex::classify::{classify, Class, Rings};
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::refine::is_fin;
 use crate::hex::subdivision::Hierarchy;
 
 /// Triangles of the dual rebuilt around MOVED_CENTER_3 hexagons (Sec. 5.4).
@@ -113,7 +114,10 @@ fn is_mc3_below(h: &Hierarchy, r: &Rings, key: Key, top: Key) -> bool {
 /// The directions j around `top` in which `top + e_j` is a MOVED_CENTER_3 hexagon whose top
 /// neighbour is `top`, as a bit mask.
 pub fn mc3_below(h: &Hierarchy, r: &Rings, top: Key) -> u8 {
+    // The middle fin of a MOVED_CENTER_3 hexagon below `top` points away from it: one lookup
+    // rules out most neighbours before they are classified.
     (0..6)
+        .filter(|&j| is_fin(h, top.neighbor(j).edge_child(j)))
         .filter(|&j| is_mc3_below(h, r, top.neighbor(j), top))
         .fold(0u8, |m, j| m | (1 << j))
 }
@@ -122,8 +126,8 @@ pub fn mc3_below(h: &Hierarchy, r: &Rings, top: Key) -> u8 {
 /// that is the top neighbour of a MOVED_CENTER_3 hexagon.
 pub fn is_mc4(h: &Hierarchy, r: &Rings, key: Key) -> bool {
     h.is_full_leaf(key)
-        && classify(h, r, key).0 == Class::FixedCenterRegular
         && mc3_below(h, r, key) != 0
+        && classify(h, r, key).0 == Class::FixedCenterRegular
 }
 
 /// The cyclic runs of set bits of a 6-bit mask as (start, length); all six as (0, 6).

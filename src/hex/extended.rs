@@ -29,9 +29,10 @@
 //! Status: not registered. Every Sec. 6 bound holds on close-pair (482 triangles; the paper
 //! reports 684), line-100 (24,678; mean over ten seeds 21,020; paper 18,667), plane-100
 //! (13,345; mean 12,499; paper 12,748), plane-1k (122,830; mean 125,625; paper 127,729) and
-//! plane-2k (266,168; mean 264,300; paper 268,138). Release build, plane-2k: 2.1–3.1 s on the
-//! shared machine (paper: 123 s), most of it in repeated verification passes (relocations,
-//! dual, checks: about 0.2 s each, five passes) and the rule rounds. The verification still
+//! plane-2k (266,168; mean 264,300; paper 268,138). Release build, plane-2k: about 2 s of CPU time
+//! (1.8–2.7 s wall on the shared machine; paper: 123 s), spent in the rule rounds (classes
+//! recomputed over up to 180,000 candidate cells per batch) and the verification passes
+//! (relocations, dual, checks). The verification still
 //! subdivides: plane-1k 149 hexagons, plane-2k 309 (`ExtendedStats::verify_splits`), mostly
 //! at ring cells of OCCUPIED_2 hexagons and at triangles of three moved hexagons (MOVED_CENTER_1
 //! and _2 on both sides of a corridor one or two hexagons wide between subdivided regions); at

@@ -48,9 +48,13 @@ fn top() -> Key {
 
 /// The subdivided neighbours beyond the fins of the chain T + e_s … T + e_{s+n-1}.
 fn beyond_fins(start: usize, n: usize) -> Vec<Key> {
+    beyond_fins_of(top(), start, n)
+}
+
+fn beyond_fins_of(t: Key, start: usize, n: usize) -> Vec<Key> {
     let mut out = Vec::new();
     for i in 0..n {
-        let k = add(top(), (start + i) % 6);
+        let k = add(t, (start + i) % 6);
         for m in 0..3 {
             out.push(add(k, (start + i + 5 + m) % 6));
         }
@@ -193,6 +197,29 @@ fn a_top_of_two_non_consecutive_moved_center_3_hexagons_is_subdivided() {
     }
     let r = rings(&h);
     assert_eq!(verdict(&h, &r, top()), Verdict::Subdivide(vec![top()]));
+}
+
+#[test]
+fn two_chains_facing_each_other_meet_the_bounds_and_the_exact_empty_circle_test() {
+    // Chains of four around T1 and T2 = T1 + e_0 + e_1 share both end neighbours
+    // (T1 + e_0, T1 + e_1) and the subdivided hexagons beside them: each shared end is a pair
+    // of right triangles on one circle.
+    let t1 = top();
+    let t2 = add(add(t1, 0), 1);
+    let mut h = uniform();
+    let mut cells = beyond_fins_of(t1, 2, 4);
+    cells.extend(beyond_fins_of(t2, 5, 4));
+    for key in cells {
+        h.subdivide(key).expect("subdivides");
+    }
+    for (t, start) in [(t1, 2), (t2, 5)] {
+        let c = Chain {
+            top: t,
+            start,
+            len: 4,
+        };
+        assert_chain_bounds(&h, c);
+    }
 }
 
 #[test]

@@ -494,7 +494,7 @@ pub fn relocations_of(
     }
     let mut patch = Patch::default();
     for chain in mc3::chains(h, r, &mc3_keys) {
-        mc3::build(h, chain, &mut moved, &mut patch);
+        mc3::build(h, r, chain, &mut moved, &mut patch);
     }
     (moved, patch)
 }

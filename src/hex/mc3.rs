@@ -259,7 +259,13 @@ fn between(a: Key, b: Key) -> Key {
 
 /// Adds the relocated centres (into `moved`, keyed canonically) and the rebuilt triangles of
 /// a chain (into `patch`), as the module docs derive them.
-pub fn build(h: &Hierarchy, c: Chain, moved: &mut FxHashMap<Key, Point>, patch: &mut Patch) {
+pub fn build(
+    h: &Hierarchy,
+    r: &Rings,
+    c: Chain,
+    moved: &mut FxHashMap<Key, Point>,
+    patch: &mut Patch,
+) {
     let n = c.len;
     let cyclic = n == 6;
     let t = c.top;
@@ -312,8 +318,28 @@ pub fn build(h: &Hierarchy, c: Chain, moved: &mut FxHashMap<Key, Point>, patch: 
             }
         }
         if !cyclic {
-            put(fin(0, 0), lerp(hat[0], cn(0, 0), 27.0 / 52.0));
-            put(fin(n - 1, 2), lerp(hat[n - 1], cn(n - 1, 2), 27.0 / 52.0));
+            let ends = [(0, 0, (c.start + 5) % 6), (n - 1, 2, (c.start + n) % 6)];
+            for (i, m, d) in ends {
+                let mut f = lerp(hat[i], cn(i, m), 27.0 / 52.0);
+                // The end triangle (E, N, f) has its right angle at f. When another chain
+                // ends at the same E and N (chains facing each other), its end fin lies on the
+                // same circle over E–N, and rounding decides the exact empty-circle test.
+                // Moving both fins off that circle by 2^-36·|EN| (an angle change below
+                // 1e-9°) makes both triangles Delaunay for the exact test.
+                let e = t.neighbor(d);
+                let z = e.neighbor(d);
+                if h.is_full_leaf(z) && classify(h, r, z).0 == Class::MovedCenter3 {
+                    let pe = lerp(h.lattice.center(e), cn(i, m), 1.0 / 6.0);
+                    let centre = mid(pe, cn(i, m));
+                    let (dx, dy) = (f[0] - centre[0], f[1] - centre[1]);
+                    let len = dx.hypot(dy);
+                    let scale = (pe[0] - cn(i, m)[0]).hypot(pe[1] - cn(i, m)[1]) * 2f64.powi(-36);
+                    if len > 0.0 {
+                        f = [f[0] + dx / len * scale, f[1] + dy / len * scale];
+                    }
+                }
+                put(fin(i, m), f);
+            }
         }
         let away =
             |w: f64, from: Point| [ct[0] + w * (ct[0] - from[0]), ct[1] + w * (ct[1] - from[1])];

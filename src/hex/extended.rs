@@ -28,20 +28,19 @@
 //!
 //! Status: not registered. Every Sec. 6 bound holds on close-pair (482 triangles; the paper
 //! reports 684), line-100 (24,678; mean over ten seeds 21,020; paper 18,667), plane-100
-//! (13,345; mean 12,499; paper 12,748), plane-1k (122,830; mean 125,625; paper 127,729) and
-//! plane-2k (266,168; mean 264,300; paper 268,138). Release build, plane-2k: about 2 s of CPU time
-//! (1.8–2.7 s wall on the shared machine; paper: 123 s), spent in the rule rounds (classes
-//! recomputed over up to 180,000 candidate cells per batch) and the verification passes
-//! (relocations, dual, checks). The verification still
-//! subdivides: plane-1k 149 hexagons, plane-2k 309 (`ExtendedStats::verify_splits`), mostly
-//! at ring cells of OCCUPIED_2 hexagons and at triangles of three moved hexagons (MOVED_CENTER_1
-//! and _2 on both sides of a corridor one or two hexagons wide between subdivided regions); at
-//! MOVED_CENTER_3 chains (`mc3_rejected`) only where two chains share an end neighbour (tops
-//! two apart, chains facing each other): 0 triangles on plane-1k, 64 on plane-2k. Fuzzing,
-//! seed 7, cases 0–999: 220 refused (points too close for f64), 45 meet the angle, radius-ratio
-//! and Delaunay bounds but have a shortest edge below √7/(12√3)·d_min (as before the
-//! MOVED_CENTER_3 topology): the self-check subdivides around two OCCUPIED_2 hexagons three
-//! cells apart whose contested cells spoil a triangle both when fixed and when moved (fixtures
+//! (13,345; mean 12,499; paper 12,748), plane-1k (122,830; mean 125,505; paper 127,729) and
+//! plane-2k (265,236; mean 263,682; paper 268,138). Release build, plane-2k: about 2 s of CPU
+//! time (1.7–2.7 s wall on the shared machine; paper: 123 s), spent in the rule rounds
+//! (classes recomputed over up to 180,000 candidate cells per batch) and the verification
+//! passes (relocations, dual, checks). The verification still subdivides: plane-1k 149
+//! hexagons, plane-2k 287 (`ExtendedStats::verify_splits`), at ring cells of OCCUPIED_2
+//! hexagons and at triangles of three moved hexagons (MOVED_CENTER_1 and _2 on both sides of a
+//! corridor one or two hexagons wide between subdivided regions); none at MOVED_CENTER_3
+//! chains (`mc3_rejected` is 0 on every dataset and seed above). Fuzzing, seed 7, cases
+//! 0–999: 220 refused (points too close for f64), 45 meet the angle, radius-ratio and Delaunay
+//! bounds but have a shortest edge below √7/(12√3)·d_min (as before the MOVED_CENTER_3
+//! topology): the self-check subdivides around two OCCUPIED_2 hexagons three cells apart whose
+//! contested cells spoil a triangle both when fixed and when moved (fixtures
 //! tests/fixtures/hex/hex-open-*), which goes one level below the r_min of Sec. 6.3. Missing:
 //! the local coarsening into blossoms (Sec. 5.3).
 

@@ -46,14 +46,24 @@
 //!   max 83.4°), a chain beside one does not (34.2°, 109.2°): the Fig. 6 rule is applied to
 //!   chains only, on the end neighbour whose fin strip does not border the chain.
 //!
-//! Departures (all refine more than the paper):
+//! Departures (all but the last refine more than the paper):
 //! - The paper's formulas assume T is a plain hexagon (no fins, no point, in no ring, not on
-//!   the boundary) and the end neighbours are MOVED_CENTER_1 (or, for a single one, 2). When
+//!   the boundary), its neighbours outside the chain and its ends FIXED_CENTER_x (they were
+//!   fixed in the derivation; a moved one, e.g. the top of another chain next to T, spoils the
+//!   triangles below T), and the end neighbours MOVED_CENTER_1 (or, for a single one, 2). When
 //!   they are not, the MOVED_CENTER_3 hexagons of that top are subdivided, as all of them were
-//!   before.
+//!   before. So is a chain whose Fig. 6 neighbour lies outside the bounding hexagon.
 //! - A MOVED_CENTER_4 hexagon counts as a moved centre in the rule "every full hexagon
 //!   adjacent to a fin must be FIXED_CENTER_x" (it is not FIXED, though Sec. 5.1 lists it
 //!   among the classes without fins).
+//! - Two chains facing each other (tops two apart) share both end neighbours E and the
+//!   subdivided hexagons N beside them; the end triangles (E, N, f) of both have their right
+//!   angle at the fin, so the four points lie on one circle and rounding decided the exact
+//!   empty-circle test (the other diagonal has a 92.2° angle). Both end fins are moved off
+//!   that circle, outwards, by 2^-36·|EN|: every angle changes by less than 1e-9°.
+//!
+//! Blossoms are built when six MOVED_CENTER_3 hexagons surround a top; the local coarsening
+//! of Sec. 5.3 that creates them from plain regions is not implemented.
 
 use crate::geom::Point;
 use crate::hex::classify::{classify, Class, Rings};

@@ -42,7 +42,7 @@
 use std::time::Instant;
 
 use crate::error::{Error, InputError, Result};
-use crate::geom::{incircle, Point};
+use crate::geom::{incircle, orient2d, Point};
 use crate::hex::classify::{classify, rings, Class, Rings, Role};
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
@@ -75,6 +75,8 @@ pub struct ExtendedStats {
     pub ring_flips: u64,
     /// Rounds of rules-then-verification.
     pub rounds: u64,
+    /// Contested ring cells placed by `settle_contested` away from both roles' positions.
+    pub settled: u64,
 }
 
 impl Mesher for Hex {
@@ -152,6 +154,11 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
 }
 
 fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<TriMesh, Stop> {
+    // The self-check below measures every angle of the finished mesh (and tests every edge
+    // with the exact empty-circle test), so levels below the worst-case precision limit are
+    // as safe here as in `hex-simple`: a triangle that rounding spoils is subdivided, and the
+    // input is refused only when that reaches the deeper limit.
+    h.allow_checked_levels();
     refine_simple(h)?;
     let mut candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
     // Contested ring cells whose centre moves after all, because keeping it fixed spoiled a
@@ -187,7 +194,9 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
         let bad = loop {
             h.check_time()?;
             let moved = relocations(h, &r);
-            let (mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
+            let (mut mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
+            stats.settled += settle_contested(h, &r, &mut mesh, &keys, false);
+            stats.settled += settle_contested(h, &r, &mut mesh, &keys, true);
             let bad = offending_leaves(h, &mesh, &keys);
             if bad.is_empty() {
                 return Ok(mesh);
@@ -213,6 +222,20 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();
         bad.sort();
         bad.dedup();
+        // Below the worst-case precision limit a rejected triangle may be rounding's doing,
+        // which subdividing only makes worse (and drives the mesh below the r_min of
+        // Sec. 6.3): the input is refused as too close for f64 instead.
+        if let Some(deep) = bad.iter().find(|k| k.k >= h.guaranteed_level()) {
+            return Err(Stop::Precision(format!(
+                "the input points are too close together for this bounding hexagon: the \
+                 dual around level-{} hexagon ({}, {}) misses the angle bounds below the \
+                 level f64 guarantees ({})",
+                deep.k,
+                deep.i,
+                deep.j,
+                h.guaranteed_level()
+            )));
+        }
         h.log.clear();
         for key in bad {
             let before = h.steps;
@@ -331,6 +354,148 @@ pub fn relocations(h: &Hierarchy, r: &Rings) -> FxHashMap<Key, Point> {
         moved.insert(key.canonical(), p);
     }
     moved
+}
+
+/// How far a triangle is inside the bounds of Sec. 6.1, in degrees: the smaller of
+/// (smallest angle − α) and (90° − largest angle); negative when a bound is broken, and -180
+/// for a triangle that is not counter-clockwise.
+fn angle_margin(t: [Point; 3]) -> f64 {
+    if orient2d(t[0], t[1], t[2]) <= 0.0 {
+        return -180.0;
+    }
+    let a = [
+        angle_deg(t[0], t[1], t[2]),
+        angle_deg(t[1], t[2], t[0]),
+        angle_deg(t[2], t[0], t[1]),
+    ];
+    let lo = a[0].min(a[1]).min(a[2]);
+    let hi = a[0].max(a[1]).max(a[2]);
+    (lo - min_angle_bound()).min(90.0 - hi)
+}
+
+/// Places the centres of contested ring cells (departure from Sec. 5.4, module docs).
+///
+/// A cell in the moved 1-ring of one OCCUPIED_2 point and the fixed 2-ring of another, three
+/// cells apart, cannot in general keep either position: the point's ring wants it shifted by
+/// ½r towards its corner, the other ring wants it at its centre, and when the two points lie
+/// on the far sides of their hexagons each choice leaves an angle below α (Sec. 6.3 lets such
+/// pairs exist without refining them). The angles at a contested cell depend only on its own
+/// position once its neighbours are placed, so each contested cell whose triangles break a
+/// bound is moved, one cell at a time, to the candidate position (its centre, or ⅛r to ½r
+/// from it in one of twelve directions) that most reduces the summed bound violation of its
+/// triangles; a few sweeps settle neighbouring contested cells. Cells whose triangles are
+/// good stay where their role put them. Returns the number of moves.
+fn settle_contested(
+    h: &Hierarchy,
+    r: &Rings,
+    mesh: &mut TriMesh,
+    keys: &[Key],
+    with_neighbours: bool,
+) -> u64 {
+    if r.contested.is_empty() {
+        return 0;
+    }
+    let slack = SELF_CHECK_SLACK;
+    // The vertices of contested cells, with their lattice centre and radius, sorted by key.
+    let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
+    {
+        // The contested cells and the ring cells next to them: when the contested cell alone
+        // cannot reach a good position, its neighbour in the same ring may have to give way.
+        let mut wanted: FxHashMap<Key, Key> = FxHashMap::default();
+        for &c in r.contested.keys() {
+            wanted.insert(c.canonical(), c);
+            if !with_neighbours {
+                continue;
+            }
+            for d in 0..6 {
+                let n = c.neighbor(d);
+                if r.roles.contains_key(&n) && h.is_full_leaf(n) {
+                    wanted.insert(n.canonical(), n);
+                }
+            }
+        }
+        for (v, k) in keys.iter().enumerate() {
+            if let Some(&leaf) = wanted.get(k) {
+                if v >= h.points.len() {
+                    cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
+                }
+            }
+        }
+    }
+    if cells.is_empty() {
+        return 0;
+    }
+    cells.sort_by_key(|c| c.0);
+    let index: FxHashMap<usize, usize> = cells.iter().enumerate().map(|(n, c)| (c.1, n)).collect();
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); cells.len()];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for &v in tri {
+            if let Some(&n) = index.get(&(v as usize)) {
+                incident[n].push(t);
+            }
+        }
+    }
+    // (bad triangles, summed violation, worst margin) of the triangles around vertex `v`
+    // placed at `p`.
+    let score = |mesh: &TriMesh, tris: &[usize], v: usize, p: Point| -> (usize, f64, f64) {
+        let mut count = 0;
+        let mut pen = 0.0;
+        let mut worst = f64::INFINITY;
+        for &t in tris {
+            let mut c = mesh.corners(t);
+            for (m, &w) in mesh.triangles[t].iter().enumerate() {
+                if w as usize == v {
+                    c[m] = p;
+                }
+            }
+            let m = angle_margin(c);
+            if m < -slack {
+                pen += m;
+                count += 1;
+            }
+            worst = worst.min(m);
+        }
+        (count, pen, worst)
+    };
+    // The second pass, which also moves the neighbours, never adds a bad triangle.
+    let better = |a: (usize, f64, f64), b: (usize, f64, f64)| {
+        if with_neighbours && a.0 != b.0 {
+            return a.0 < b.0;
+        }
+        a.1 > b.1 || (a.1 == b.1 && a.2 > b.2)
+    };
+    let mut moves = 0;
+    for _sweep in 0..6 {
+        let mut changed = false;
+        for (n, &(_, v, centre, radius)) in cells.iter().enumerate() {
+            let here = mesh.vertices[v];
+            let mut best_score = score(mesh, &incident[n], v, here);
+            if best_score.0 == 0 {
+                continue;
+            }
+            let mut best = here;
+            for step in 0..=8 {
+                let rho = radius * step as f64 / 16.0;
+                for dir in 0..if step == 0 { 1 } else { 24 } {
+                    let a = (dir as f64 * 15.0).to_radians();
+                    let p = [centre[0] + rho * a.cos(), centre[1] + rho * a.sin()];
+                    let sc = score(mesh, &incident[n], v, p);
+                    if better(sc, best_score) {
+                        (best_score, best) = (sc, p);
+                    }
+                }
+            }
+            if best != here {
+                mesh.vertices[v] = best;
+                moves += 1;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    moves
 }
 
 /// The leaf of the vertex with canonical key `key`: the end of its chain of central children.

@@ -164,6 +164,11 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
     // Contested ring cells whose centre moves after all, because keeping it fixed spoiled a
     // triangle; each cell flips at most once, so the verification still terminates.
     let mut flipped: FxHashSet<Key> = FxHashSet::default();
+    // The shortest edge Sec. 6.3 promises, √7/(12√3)·d_min: placing a contested cell must not
+    // undercut it.
+    let l_min = crate::quality::closest_pair(&h.points).map_or(0.0, |c| {
+        c.distance * crate::quality::bounds::HEX_MIN_EDGE_OVER_DMIN * (1.0 + 1e-9)
+    });
     loop {
         stats.rounds += 1;
         loop {
@@ -195,8 +200,8 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
             h.check_time()?;
             let moved = relocations(h, &r);
             let (mut mesh, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
-            stats.settled += settle_contested(h, &r, &mut mesh, &keys, false);
-            stats.settled += settle_contested(h, &r, &mut mesh, &keys, true);
+            stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, false);
+            stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, true);
             let bad = offending_leaves(h, &mesh, &keys);
             if bad.is_empty() {
                 return Ok(mesh);
@@ -381,36 +386,39 @@ fn angle_margin(t: [Point; 3]) -> f64 {
 /// on the far sides of their hexagons each choice leaves an angle below α (Sec. 6.3 lets such
 /// pairs exist without refining them). The angles at a contested cell depend only on its own
 /// position once its neighbours are placed, so each contested cell whose triangles break a
-/// bound is moved, one cell at a time, to the candidate position (its centre, or ⅛r to ½r
-/// from it in one of twelve directions) that most reduces the summed bound violation of its
-/// triangles; a few sweeps settle neighbouring contested cells. Cells whose triangles are
-/// good stay where their role put them. Returns the number of moves.
+/// bound is moved, one cell at a time, to the candidate position (its centre, or r/16 to ½r in steps of r/16,
+/// in one of twenty-four directions) that most reduces the summed bound violation of
+/// its triangles, never making an edge shorter than `l_min` (Sec. 6.3); a few sweeps settle
+/// neighbouring contested cells. Cells whose triangles are good stay where their role put
+/// them. A second pass (`with_neighbours`) also moves the ring cells next to contested ones,
+/// accepting only moves that lower the number of bad triangles around the moved cell.
+/// Returns the number of moves.
 fn settle_contested(
     h: &Hierarchy,
     r: &Rings,
     mesh: &mut TriMesh,
     keys: &[Key],
+    l_min: f64,
     with_neighbours: bool,
 ) -> u64 {
-    if r.contested.is_empty() {
+    if r.contested.is_empty() && !with_neighbours {
         return 0;
     }
     let slack = SELF_CHECK_SLACK;
     // The vertices of contested cells, with their lattice centre and radius, sorted by key.
     let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
     {
-        // The contested cells and the ring cells next to them: when the contested cell alone
-        // cannot reach a good position, its neighbour in the same ring may have to give way.
+        // The contested cells; in the second pass every ring cell: when a contested cell
+        // alone cannot reach a good position its neighbour in the same ring has to give way,
+        // and a moved ring cell may come closer to an OCCUPIED_2 point than l_min.
         let mut wanted: FxHashMap<Key, Key> = FxHashMap::default();
         for &c in r.contested.keys() {
             wanted.insert(c.canonical(), c);
-            if !with_neighbours {
-                continue;
-            }
-            for d in 0..6 {
-                let n = c.neighbor(d);
-                if r.roles.contains_key(&n) && h.is_full_leaf(n) {
-                    wanted.insert(n.canonical(), n);
+        }
+        if with_neighbours {
+            for &c in r.roles.keys() {
+                if h.is_full_leaf(c) {
+                    wanted.insert(c.canonical(), c);
                 }
             }
         }
@@ -435,12 +443,15 @@ fn settle_contested(
             }
         }
     }
-    // (bad triangles, summed violation, worst margin) of the triangles around vertex `v`
-    // placed at `p`.
-    let score = |mesh: &TriMesh, tris: &[usize], v: usize, p: Point| -> (usize, f64, f64) {
-        let mut count = 0;
-        let mut pen = 0.0;
-        let mut worst = f64::INFINITY;
+    // Around vertex `v` placed at `p`: how far edges fall short of `l_min`, triangles breaking an angle
+    // bound, their summed violation (degrees, negative) and the worst margin.
+    let score = |mesh: &TriMesh, tris: &[usize], v: usize, p: Point| -> Score {
+        let mut sc = Score {
+            short: 0.0,
+            bad: 0,
+            pen: 0.0,
+            worst: f64::INFINITY,
+        };
         for &t in tris {
             let mut c = mesh.corners(t);
             for (m, &w) in mesh.triangles[t].iter().enumerate() {
@@ -448,21 +459,29 @@ fn settle_contested(
                     c[m] = p;
                 }
             }
+            sc.short += (0..3)
+                .map(|e| (l_min - crate::geom::dist(c[e], c[(e + 1) % 3])).max(0.0))
+                .sum::<f64>();
             let m = angle_margin(c);
             if m < -slack {
-                pen += m;
-                count += 1;
+                sc.pen += m;
+                sc.bad += 1;
             }
-            worst = worst.min(m);
+            sc.worst = sc.worst.min(m);
         }
-        (count, pen, worst)
+        sc
     };
-    // The second pass, which also moves the neighbours, never adds a bad triangle.
-    let better = |a: (usize, f64, f64), b: (usize, f64, f64)| {
-        if with_neighbours && a.0 != b.0 {
-            return a.0 < b.0;
+    // The first pass never makes an edge shorter than l_min; the second, which moves cells
+    // that are not contested, never adds a bad triangle around the moved cell either, and
+    // shortens no edge for the sake of an angle (or the reverse).
+    let better = |a: &Score, b: &Score| {
+        if with_neighbours && a.bad != b.bad {
+            return a.bad < b.bad && a.short <= b.short;
         }
-        a.1 > b.1 || (a.1 == b.1 && a.2 > b.2)
+        if a.short != b.short {
+            return a.short < b.short && (!with_neighbours || a.bad <= b.bad);
+        }
+        a.pen > b.pen || (a.pen == b.pen && a.worst > b.worst)
     };
     let mut moves = 0;
     for _sweep in 0..6 {
@@ -470,7 +489,7 @@ fn settle_contested(
         for (n, &(_, v, centre, radius)) in cells.iter().enumerate() {
             let here = mesh.vertices[v];
             let mut best_score = score(mesh, &incident[n], v, here);
-            if best_score.0 == 0 {
+            if best_score.bad == 0 && best_score.short == 0.0 {
                 continue;
             }
             let mut best = here;
@@ -480,7 +499,7 @@ fn settle_contested(
                     let a = (dir as f64 * 15.0).to_radians();
                     let p = [centre[0] + rho * a.cos(), centre[1] + rho * a.sin()];
                     let sc = score(mesh, &incident[n], v, p);
-                    if better(sc, best_score) {
+                    if better(&sc, &best_score) {
                         (best_score, best) = (sc, p);
                     }
                 }
@@ -496,6 +515,15 @@ fn settle_contested(
         }
     }
     moves
+}
+
+/// How the triangles around one vertex fare (`settle_contested`).
+struct Score {
+    /// Summed shortfall of the edges below `l_min`.
+    short: f64,
+    bad: usize,
+    pen: f64,
+    worst: f64,
 }
 
 /// The leaf of the vertex with canonical key `key`: the end of its chain of central children.

@@ -9,10 +9,31 @@
 //!   implementation does not have that topology yet, so MOVED_CENTER_4 and blossoms never occur.
 //! - Rings of two points (Sec. 5.1): a cell in the fixed ring of one point and the moved
 //!   1-ring of another is FIXED_CENTER_IN_RING (the order of Sec. 5.1, and Sec. 6.3 lets
-//!   OCCUPIED_2 hexagons three apart share ring cells). When the self-check below rejects a
-//!   triangle at such a contested cell, the cell takes its moved role instead (once) before
-//!   anything is subdivided. Only an occupied hexagon in another's ring, or two moved 1-rings
-//!   overlapping (occupied hexagons two apart), still subdivides both.
+//!   OCCUPIED_2 hexagons three apart share ring cells). Only an occupied hexagon in another's
+//!   ring, or two moved 1-rings overlapping (occupied hexagons two apart), subdivides both.
+//! - Contested ring cells are placed, not just fixed or moved (departs from Sec. 5.4, which
+//!   has one position per class). Two OCCUPIED_2 points three cells apart on the far sides of
+//!   their hexagons pull the cells between them both ways: A's 1-ring shifts ½r towards A's
+//!   corner, B's 1-ring towards B's, and the cells of one ring that touch the other ring's
+//!   are then up to r out of line (fixture hex-contested-ring-far-pair-*: points 5.49r apart,
+//!   smallest angle 39.4° with the cells fixed, 34.3° with them moved). Splitting them is no
+//!   way out there: two points in hexagons three apart
+//!   can be 6.9r apart, farther than the 3√3·r = 5.2r up to which hexagons of radius r/2 keep
+//!   the r_min = d_min/(6√3) of Sec. 6.3. A search in a local model of the two rings found a
+//!   good position for the contested cells in every sampled configuration, so
+//!   `settle_contested` searches for it: each contested cell in a rejected triangle moves to
+//!   the candidate position (its centre, or r/16 … r/2 away in one of 24 directions) that
+//!   most reduces the angle violation of its triangles; a second pass also moves the other
+//!   ring cells (a contested cell may need its neighbour to give way, and a moved ring cell
+//!   can come closer to an OCCUPIED_2 point than l_min = √7/(12√3)·d_min) but never adds a
+//!   bad triangle around the moved cell. No move makes an edge shorter than l_min. A contested
+//!   cell whose triangle the self-check still rejects takes its moved role once, then the
+//!   search runs again, before anything is subdivided.
+//! - Precision: the refinement may go `CHECKED_LEVELS` below the worst-case precision level,
+//!   as `hex-simple` does, because the self-check measures every angle of the output and
+//!   tests every edge exactly. Below that level a rejected triangle may be rounding's doing,
+//!   and subdividing it only goes deeper (one set took 358 such splits, to 0.035·d_min), so
+//!   there the input is refused as too close for f64 instead.
 //! - Sec. 6.1 admits that the bounds were checked on "almost all configurations". As a last
 //!   rule, the finished dual is verified (angles, exact empty-circle test) and the coarsest
 //!   hexagon of each offending triangle is subdivided, and the rules run again. The count of such
@@ -26,18 +47,20 @@
 //! comes back with `complete == false`, its centres unmoved.
 //!
 //! Status: not registered. Every Sec. 6 bound holds on close-pair (482 triangles; the paper
-//! reports 684), line-100 (46,094; paper 18,667), plane-100 (35,112; 12,748), plane-1k (533,770;
-//! 127,729) and plane-2k (595,168; 268,138); in a test build (opt-level 2) with the checks,
-//! plane-1k takes 6.2 s and plane-2k 11.1 s (paper: 123 s for plane-2k). Fuzzing, seed 7,
-//! cases 0–999 (44 s): 220 refused (points too close for f64), 735 meet every bound, 45 meet
-//! the angle, radius-ratio and Delaunay bounds but have a shortest edge below √7/(12√3)·d_min
-//! (worst 0.098·d_min): the self-check subdivides around two OCCUPIED_2 hexagons three cells
-//! apart whose contested cells spoil a triangle both when fixed and when moved (fixtures
-//! tests/fixtures/hex/hex-open-*), which goes one level below the r_min of Sec. 6.3 (its "at
-//! most six full hexagons in between" assumes no such subdivision). No case needs more than a
-//! second. Subdividing MOVED_CENTER_3 hexagons cascades along straight lines of the hexagon
-//! mesh, which makes the meshes larger than the paper's. Missing: the MOVED_CENTER_3 topology
-//! of Sec. 5.4 (fin centres, Fig. 9) with MOVED_CENTER_4 and the blossoms of Sec. 5.3.
+//! reports 684), line-100 (44,934; paper 18,667), plane-100 (34,816; 12,748), plane-1k (531,636;
+//! 127,729) and plane-2k (575,942; 268,138); in a test build (opt-level 2) with the checks,
+//! plane-1k takes 5.7 s and plane-2k 9.3 s (paper: 123 s for plane-2k). Fuzzing (`hexmesh
+//! fuzz`, release build), 3000 cases of nine families each: seed 7 refuses 443 (310 of 333
+//! near-duplicate sets, 132 of 333 translated to 1e7, 1 clustered) and fails 3, seed 20261123
+//! refuses 457 (312, 140, 5) and fails 2; worst radius ratio 1.2078697, no exact Delaunay
+//! violation. Every failure is the open configuration of the grid family: an OCCUPIED_2 point
+//! on its hexagon's edge, a quarter of the edge from its nearest corner, is (3√3/4)·r from the
+//! ring cell across that edge after the ½r shift of Sec. 5.4, below the (√7/2)·r that Sec. 6.3
+//! takes as the shortest edge; when the finest hexagons are within 2% of r_min that edge is
+//! 0.1262·d_min (fixture hex-open-shortest-edge-grid-*). Subdividing MOVED_CENTER_3 hexagons
+//! cascades along straight lines of the hexagon mesh, which makes the meshes larger than the
+//! paper's. Missing: the MOVED_CENTER_3 topology of Sec. 5.4 (fin centres, Fig. 9) with
+//! MOVED_CENTER_4 and the blossoms of Sec. 5.3.
 
 use std::time::Instant;
 

@@ -217,15 +217,14 @@ fn a_deep_clustered_set_finishes_within_a_few_seconds_and_meets_every_bound() {
     assert_extended_bounds(&input);
 }
 
-/// Open: an OCCUPIED_2 point on its hexagon's edge, a quarter of the edge from its nearest
-/// corner, is (3√3/4)·r ≈ 1.299·r from the moved ring cell across that edge (Sec. 5.4 shift),
-/// not the (√7/2)·r ≈ 1.323·r Sec. 6.3 takes as the shortest edge; with the finest hexagons
-/// within 2% of r_min the shortest edge falls to 0.1262·d_min. Neither the local placement of
-/// `settle_contested` nor a split (one level below r_min) repairs it.
+/// An OCCUPIED_2 point on its hexagon's edge, a quarter of the edge from its nearest corner,
+/// is (3√3/4)·r ≈ 1.299·r from the moved ring cell across that edge (Sec. 5.4 shift), not the
+/// (√7/2)·r ≈ 1.323·r Sec. 6.3 takes as the shortest edge. A grid whose points 5.14·r apart
+/// were split to hexagons within 2% of r_min had a shortest edge of 0.1262·d_min; such pairs
+/// are now split only up to 5.10·r apart.
 #[test]
-#[ignore = "open: Sec. 6.3 shortest edge for an OCCUPIED_2 point on its hexagon's edge"]
-fn open_grid_occupied_2_point_on_its_edge() {
+fn an_occupied_2_point_on_its_hexagon_edge_keeps_the_shortest_edge_bound() {
     assert_extended_bounds(&fixture(
-        "hex-open-shortest-edge-grid-fuzz-seed20261123-case26.node",
+        "hex-shortest-edge-grid-fuzz-seed20261123-case26.node",
     ));
 }

@@ -9,8 +9,18 @@
 //!   implementation does not have that topology yet, so MOVED_CENTER_4 and blossoms never occur.
 //! - Rings of two points (Sec. 5.1): a cell in the fixed ring of one point and the moved
 //!   1-ring of another is FIXED_CENTER_IN_RING (the order of Sec. 5.1, and Sec. 6.3 lets
-//!   OCCUPIED_2 hexagons three apart share ring cells). Only an occupied hexagon in another's
-//!   ring, or two moved 1-rings overlapping (occupied hexagons two apart), subdivides both.
+//!   OCCUPIED_2 hexagons three apart share ring cells). An occupied hexagon in another's
+//!   ring, or two moved 1-rings overlapping (occupied hexagons two apart), subdivides both,
+//!   but only when the two points are at most 5.10·r apart. Sec. 6.3 takes (√7/2)·r_min as
+//!   the shortest edge, but an OCCUPIED_2 point on its hexagon's edge, a quarter of the edge
+//!   from its nearest corner, is only (3√3/4)·r from the ring cell across that edge after the
+//!   ½r shift of Sec. 5.4: with r = 1, corner (1, 0) and the point (1 - t/2, t·√3/2) on the
+//!   edge to (½, √3/2), that cell moves from (3/2, √3/2) to (2, √3/2), at squared distance
+//!   7/4 - t/2 + t², smallest at t = ¼ (27/16) and √7/2 only at the corner (t = 0).
+//!   Splitting gives hexagons of r/2, which keep √7/(12√3)·d_min only if
+//!   (3√3/4)·r/2 ≥ √7/(12√3)·d, d ≤ 5.10·r; points up to 5.29·r apart can sit two cells apart,
+//!   and a grid of spacing 5.14·r had its shortest edge at 0.1262·d_min (fixture
+//!   hex-shortest-edge-grid-*). Farther apart the shared cells are contested instead.
 //! - Contested ring cells are placed, not just fixed or moved (departs from Sec. 5.4, which
 //!   has one position per class). Two OCCUPIED_2 points three cells apart on the far sides of
 //!   their hexagons pull the cells between them both ways: A's 1-ring shifts ½r towards A's

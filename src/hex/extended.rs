@@ -61,13 +61,13 @@
 //! 127,729) and plane-2k (575,942; 268,138); in a test build (opt-level 2) with the checks,
 //! plane-1k takes 5.7 s and plane-2k 9.3 s (paper: 123 s for plane-2k). Fuzzing (`hexmesh
 //! fuzz`, release build), 3000 cases of nine families each: seed 7 refuses 443 (310 of 333
-//! near-duplicate sets, 132 of 333 translated to 1e7, 1 clustered) and fails 3, seed 20261123
-//! refuses 457 (312, 140, 5) and fails 2; worst radius ratio 1.2078697, no exact Delaunay
-//! violation. Every failure is the open configuration of the grid family: an OCCUPIED_2 point
-//! on its hexagon's edge, a quarter of the edge from its nearest corner, is (3√3/4)·r from the
-//! ring cell across that edge after the ½r shift of Sec. 5.4, below the (√7/2)·r that Sec. 6.3
-//! takes as the shortest edge; when the finest hexagons are within 2% of r_min that edge is
-//! 0.1262·d_min (fixture hex-open-shortest-edge-grid-*). Subdividing MOVED_CENTER_3 hexagons
+//! near-duplicate sets, 132 of 333 translated to 1e7, 1 clustered), seed 20261123 refuses 457
+//! (312, 140, 5), and both mesh every other case within every Sec. 6 bound (smallest angle
+//! 43.8978862°, largest 90.0000001°, radius ratio 1.2078697, shortest edge 0.1302·d_min, no
+//! exact Delaunay violation). `hex-simple` refuses 392 and 411 of the same cases (302/301
+//! near-duplicates, 90/110 translated) with the same precision limit: the extended rules go
+//! a level or two deeper than the simple ones on the same set, and below the worst-case
+//! level a triangle rounding pushes past 90° is refused. Subdividing MOVED_CENTER_3 hexagons
 //! cascades along straight lines of the hexagon mesh, which makes the meshes larger than the
 //! paper's. Missing: the MOVED_CENTER_3 topology of Sec. 5.4 (fin centres, Fig. 9) with
 //! MOVED_CENTER_4 and the blossoms of Sec. 5.3.

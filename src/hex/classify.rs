@@ -108,12 +108,14 @@ pub enum Role {
 }
 
 /// The ring roles of all hexagons around occupied hexagons, and the occupied hexagons whose
-/// rings collide with another point's rings (they must be subdivided).
+/// rings collide with another point's rings close enough to it that splitting both keeps
+/// the shortest edge of Sec. 6.3 (they must be subdivided).
 #[derive(Debug, Clone, Default)]
 pub struct Rings {
     pub roles: FxHashMap<Key, Role>,
     /// Cells claimed by the fixed ring of one point and the moved 1-ring of another, with the
-    /// moved role they lost (Sec. 5.1 lists FIXED_CENTER_IN_RING first).
+    /// moved role they lost (Sec. 5.1 lists FIXED_CENTER_IN_RING first), and cells of two
+    /// moved 1-rings of points too far apart to split, with the second one's role.
     pub contested: FxHashMap<Key, Role>,
     pub occupied: FxHashMap<Key, Class>,
     pub conflicts: Vec<Key>,
@@ -189,9 +191,21 @@ pub fn rings(h: &Hierarchy) -> Rings {
         if class == Class::Occupied2 {
             wanted.extend(ring(key, 2).into_iter().map(|c| (c, Role::Fixed)));
         }
+        // Splitting a pair gives hexagons of radius r/2, and a moved ring cell can lie
+        // (3√3/4)·(r/2) from an OCCUPIED_2 point on its hexagon's edge: that keeps the
+        // shortest edge l_min = √7/(12√3)·d of Sec. 6.3 only for points at most
+        // (3√3/4)/(√7/(12√3))/2·r ≈ 5.10·r apart. Farther apart the pair is not split and
+        // `extended::settle_contested` places the cells its rings share.
+        let reach = 3.0 * 3f64.sqrt() / 4.0 / (7f64.sqrt() / (12.0 * 3f64.sqrt())) / 2.0;
+        let splittable = |other: Key| {
+            let q = h.points[h.occupants(other)[0] as usize];
+            dist2(p, q).sqrt() <= reach * h.lattice.radius(key.k)
+        };
         for (cell, role) in wanted {
             if r.occupied.contains_key(&cell) {
-                conflict(&mut r, key, cell);
+                if splittable(cell) {
+                    conflict(&mut r, key, cell);
+                }
                 continue;
             }
             match (r.roles.get(&cell).copied(), role) {
@@ -214,7 +228,11 @@ pub fn rings(h: &Hierarchy) -> Rings {
                 (Some(Role::Moved { owner, .. }), Role::Moved { .. }) => {
                     // Two moved 1-rings overlap only when the occupied hexagons are two apart,
                     // closer than Sec. 6.3 assumes.
-                    conflict(&mut r, key, owner);
+                    if splittable(owner) {
+                        conflict(&mut r, key, owner);
+                    } else {
+                        r.contested.entry(cell).or_insert(role);
+                    }
                 }
             }
         }

@@ -10,10 +10,41 @@
 //! Departures from the paper (all but the ring rule only refine more):
 //! - Rings of two points (Sec. 5.1): a cell in the fixed ring of one point and the moved
 //!   1-ring of another is FIXED_CENTER_IN_RING (the order of Sec. 5.1, and Sec. 6.3 lets
-//!   OCCUPIED_2 hexagons three apart share ring cells). When the self-check below rejects a
-//!   triangle at such a contested cell, the cell takes its moved role instead (once) before
-//!   anything is subdivided. Only an occupied hexagon in another's ring, or two moved 1-rings
-//!   overlapping (occupied hexagons two apart), still subdivides both.
+//!   OCCUPIED_2 hexagons three apart share ring cells). An occupied hexagon in another's
+//!   ring, or two moved 1-rings overlapping (occupied hexagons two apart), subdivides both,
+//!   but only when the two points are at most 5.10·r apart. Sec. 6.3 takes (√7/2)·r_min as
+//!   the shortest edge, but an OCCUPIED_2 point on its hexagon's edge, a quarter of the edge
+//!   from its nearest corner, is only (3√3/4)·r from the ring cell across that edge after the
+//!   ½r shift of Sec. 5.4: with r = 1, corner (1, 0) and the point (1 - t/2, t·√3/2) on the
+//!   edge to (½, √3/2), that cell moves from (3/2, √3/2) to (2, √3/2), at squared distance
+//!   7/4 - t/2 + t², smallest at t = ¼ (27/16) and √7/2 only at the corner (t = 0).
+//!   Splitting gives hexagons of r/2, which keep √7/(12√3)·d_min only if
+//!   (3√3/4)·r/2 ≥ √7/(12√3)·d, d ≤ 5.10·r; points up to 5.29·r apart can sit two cells apart,
+//!   and a grid of spacing 5.14·r had its shortest edge at 0.1262·d_min (fixture
+//!   hex-shortest-edge-grid-*). Farther apart the shared cells are contested instead.
+//! - Contested ring cells are placed, not just fixed or moved (departs from Sec. 5.4, which
+//!   has one position per class). Two OCCUPIED_2 points three cells apart on the far sides of
+//!   their hexagons pull the cells between them both ways: A's 1-ring shifts ½r towards A's
+//!   corner, B's 1-ring towards B's, and the cells of one ring that touch the other ring's
+//!   are then up to r out of line (fixture hex-contested-ring-far-pair-*: points 5.49r apart,
+//!   smallest angle 39.4° with the cells fixed, 34.3° with them moved). Splitting them is no
+//!   way out there: two points in hexagons three apart
+//!   can be 6.9r apart, farther than the 3√3·r = 5.2r up to which hexagons of radius r/2 keep
+//!   the r_min = d_min/(6√3) of Sec. 6.3. A search in a local model of the two rings found a
+//!   good position for the contested cells in every sampled configuration, so
+//!   `settle_contested` searches for it: each contested cell in a rejected triangle moves to
+//!   the candidate position (its centre, or r/16 … r/2 away in one of 24 directions) that
+//!   most reduces the angle violation of its triangles; a second pass also moves the other
+//!   ring cells (a contested cell may need its neighbour to give way, and a moved ring cell
+//!   can come closer to an OCCUPIED_2 point than l_min = √7/(12√3)·d_min) but never adds a
+//!   bad triangle around the moved cell. No move makes an edge shorter than l_min. A contested
+//!   cell whose triangle the self-check still rejects takes its moved role once, then the
+//!   search runs again, before anything is subdivided.
+//! - Precision: the refinement may go `CHECKED_LEVELS` below the worst-case precision level,
+//!   as `hex-simple` does, because the self-check measures every angle of the output and
+//!   tests every edge exactly. Below that level a rejected triangle may be rounding's doing,
+//!   and subdividing it only goes deeper (one set took 358 such splits, to 0.035·d_min), so
+//!   there the input is refused as too close for f64 instead.
 //! - Sec. 6.1 admits that the bounds were checked on "almost all configurations". As a last
 //!   rule, the finished dual is verified (angles, exact empty-circle test) and the coarsest
 //!   hexagon of each offending triangle is subdivided, and the rules run again. The count of such
@@ -27,27 +58,12 @@
 //! comes back with `complete == false`, its centres unmoved.
 //!
 //! Status: not registered. Every Sec. 6 bound holds on close-pair (482 triangles; the paper
-//! reports 684), line-100 (24,678; mean over ten seeds 21,020; paper 18,667), plane-100
-//! (13,345; mean 12,499; paper 12,748), plane-1k (122,830; mean 125,505; paper 127,729) and
-//! plane-2k (265,236; mean 263,682; paper 268,138). Release build, plane-2k: about 2 s of CPU
-//! time (1.7–2.7 s wall on the shared machine; paper: 123 s), spent in the rule rounds
-//! (classes recomputed over up to 180,000 candidate cells per batch) and the verification
-//! passes (relocations, dual, checks). The verification still subdivides: plane-1k 149
-//! hexagons, plane-2k 287 (`ExtendedStats::verify_splits`), at ring cells of OCCUPIED_2
-//! hexagons and at triangles of three moved hexagons (MOVED_CENTER_1 and _2 on both sides of a
-//! corridor one or two hexagons wide between subdivided regions); none at MOVED_CENTER_3
-//! chains (`mc3_rejected` is 0 on every dataset and seed above). Fuzzing, seed 7, cases
-//! 0–999: 220 refused (points too close for f64), 45 meet the angle, radius-ratio and Delaunay
-//! bounds but have a shortest edge below √7/(12√3)·d_min (as before the MOVED_CENTER_3
-//! topology): the self-check subdivides around two OCCUPIED_2 hexagons three cells apart whose
-//! contested cells spoil a triangle both when fixed and when moved (fixtures
-//! tests/fixtures/hex/hex-open-*), which goes one level below the r_min of Sec. 6.3. Missing:
-//! the local coarsening into blossoms (Sec. 5.3).
+//! reports 684); the figures of the merged mesher are in README.md ("hex") and reports/.
 
 use std::time::Instant;
 
 use crate::error::{Error, InputError, Result};
-use crate::geom::{incircle, Point};
+use crate::geom::{incircle, orient2d, Point};
 use crate::hex::classify::{classify, rings, Class, Rings, Role};
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
@@ -91,6 +107,8 @@ pub struct ExtendedStats {
     /// Triangles the self-check examined, over all rounds (the whole dual once, then only
     /// the neighbourhoods of changes).
     pub checked_triangles: u64,
+    /// Contested ring cells placed by `settle_contested` away from both roles' positions.
+    pub settled: u64,
 }
 
 impl Mesher for Hex {
@@ -140,23 +158,45 @@ pub struct ExtendedRun {
     pub mesh: TriMesh,
     pub stop: Option<String>,
     pub stats: ExtendedStats,
-    /// The contested ring cells whose centre moved after all (see the module docs).
+    /// The contested ring cells moved after all and the cells placed by `settle_contested`.
+    pub rings: RingState,
+}
+
+/// What the self-check decided about ring cells, beyond their class: kept so that a later
+/// extraction (after a local check, or an incremental insertion) places them the same way.
+#[derive(Debug, Clone, Default)]
+pub struct RingState {
+    /// Contested ring cells whose centre moves after all, because keeping it fixed spoiled a
+    /// triangle; each cell flips at most once, so the verification still terminates.
     pub flipped: FxHashSet<Key>,
+    /// Vertices (by canonical key) that `settle_contested` placed, with their place.
+    pub placed: FxHashMap<Key, Point>,
+}
+
+impl RingState {
+    /// Forgets the places of cells near `changed`: their class or their neighbours changed.
+    fn forget_near(&mut self, changed: &[Key]) {
+        if self.placed.is_empty() || changed.is_empty() {
+            return;
+        }
+        let near = Region::around(changed, 3);
+        self.placed.retain(|k, _| !near.contains(*k));
+    }
 }
 
 /// Runs the extended refinement and builds the relocated dual.
 pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
     let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
-    let mut flipped = FxHashSet::default();
-    let outcome = refine_and_verify(&mut h, &mut stats, &mut flipped);
+    let mut rings = RingState::default();
+    let outcome = refine_and_verify(&mut h, &mut stats, &mut rings);
     match outcome {
         Ok(mesh) => Ok(ExtendedRun {
             hierarchy: h,
             mesh,
             stop: None,
             stats,
-            flipped,
+            rings,
         }),
         Err(Stop::Budget(why)) => {
             let mesh = dual::extract(&h, Placement::Plain);
@@ -165,7 +205,7 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
                 mesh,
                 stop: Some(format!("stopped by the {why}")),
                 stats,
-                flipped,
+                rings,
             })
         }
         Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
@@ -175,22 +215,34 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
 fn refine_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
-    flipped: &mut FxHashSet<Key>,
+    state: &mut RingState,
 ) -> Result<TriMesh, Stop> {
+    // The self-check below measures every angle of the finished mesh (and tests every edge
+    // with the exact empty-circle test), so levels below the worst-case precision limit are
+    // as safe here as in `hex-simple`: a triangle that rounding spoils is subdivided, and the
+    // input is refused only when that reaches the deeper limit.
+    h.allow_checked_levels();
     refine_simple(h)?;
     let candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
-    match extend_and_verify(h, stats, flipped, candidates, None)? {
+    match extend_and_verify(h, stats, state, candidates, None)? {
         Some(mesh) => Ok(mesh),
-        None => Ok(final_dual(h, flipped)),
+        None => Ok(final_dual(h, state)),
     }
 }
 
-/// The relocated dual of the whole subdivision, with the contested ring cells in `flipped`
-/// moved (`extend_and_verify` has verified it).
-pub(crate) fn final_dual(h: &Hierarchy, flipped: &FxHashSet<Key>) -> TriMesh {
-    let r = rings_with_flips(h, flipped);
-    let (moved, patch) = relocations(h, &r);
+/// The relocated dual of the whole subdivision, with the ring decisions of `state`
+/// (`extend_and_verify` has verified it).
+pub(crate) fn final_dual(h: &Hierarchy, state: &RingState) -> TriMesh {
+    let r = rings_with_flips(h, &state.flipped);
+    let (mut moved, patch) = relocations(h, &r);
+    apply_placed(&mut moved, state);
     dual::extract_patched(h, Placement::Relocated, &moved, &patch).0
+}
+
+fn apply_placed(moved: &mut FxHashMap<Key, Point>, state: &RingState) {
+    let mut placed: Vec<(Key, Point)> = state.placed.iter().map(|(k, p)| (*k, *p)).collect();
+    placed.sort_by_key(|e| e.0);
+    moved.extend(placed);
 }
 
 /// The rings of `h` with the contested cells in `flipped` given their moved role.
@@ -231,15 +283,23 @@ impl RingCache {
 /// the whole dual and, when it passes, that dual is returned; otherwise (and after any
 /// repair) only the triangles near the cells changed since the last complete check are
 /// checked (`region`), and `None` says that the whole dual now passes and is still to be
-/// extracted. `flipped` keeps the contested ring cells that were moved after all.
+/// extracted (`final_dual`). `state` keeps the ring decisions of the self-check.
 pub(crate) fn extend_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
-    flipped: &mut FxHashSet<Key>,
+    state: &mut RingState,
     mut candidates: Vec<Key>,
     mut changed: Option<Vec<Key>>,
 ) -> Result<Option<TriMesh>, Stop> {
     let mut cache = RingCache::default();
+    // The shortest edge Sec. 6.3 promises, √7/(12√3)·d_min: placing a contested cell must not
+    // undercut it.
+    let l_min = crate::quality::closest_pair(&h.points).map_or(0.0, |c| {
+        c.distance * crate::quality::bounds::HEX_MIN_EDGE_OVER_DMIN * (1.0 + 1e-9)
+    });
+    if let Some(c) = &changed {
+        state.forget_near(c);
+    }
     loop {
         stats.rounds += 1;
         loop {
@@ -264,24 +324,27 @@ pub(crate) fn extend_and_verify(
             drain(h)?;
             if let Some(c) = changed.as_mut() {
                 c.extend_from_slice(&h.log);
+                state.forget_near(&h.log);
             }
             candidates = around(&h.log);
         }
-        let mut r = rings_with_flips(h, flipped);
+        let mut r = rings_with_flips(h, &state.flipped);
         let bad = loop {
             h.check_time()?;
-            let (mesh, mut keys, patch) = match &changed {
+            let (mut mesh, mut keys, patch, movable) = match &changed {
                 None => {
-                    let (moved, patch) = relocations(h, &r);
+                    let (mut moved, patch) = relocations(h, &r);
+                    apply_placed(&mut moved, state);
                     let (mesh, keys) =
                         dual::extract_patched(h, Placement::Relocated, &moved, &patch);
-                    (mesh, keys, patch)
+                    (mesh, keys, patch, None)
                 }
                 Some(c) => {
                     // Relocations reach a little further than the triangles checked, so that
                     // every vertex of a checked triangle has its final place.
                     let wide = Region::around(c, REACH + 3);
-                    let (moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
+                    let (mut moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
+                    apply_placed(&mut moved, state);
                     let region = Region::around(c, REACH);
                     let (mesh, keys) = dual::extract_region_patched(
                         h,
@@ -290,10 +353,21 @@ pub(crate) fn extend_and_verify(
                         &patch,
                         &region,
                     );
-                    (mesh, keys, patch)
+                    // Only vertices whose every triangle is in this part of the dual may be
+                    // placed by `settle_contested`.
+                    (mesh, keys, patch, Some(Region::around(c, REACH - 3)))
                 }
             };
             stats.checked_triangles += mesh.triangles.len() as u64;
+            let before = mesh.vertices.clone();
+            let movable = |k: Key| movable.as_ref().is_none_or(|m| m.contains(k));
+            stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, false, &movable);
+            stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, true, &movable);
+            for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
+                if old != new {
+                    state.placed.insert(keys[v], *new);
+                }
+            }
             // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin.
             for k in keys.iter_mut() {
                 if let Some(&owner) = patch.fin_owner.get(k) {
@@ -313,7 +387,7 @@ pub(crate) fn extend_and_verify(
             let mut flips: Vec<Key> = bad
                 .iter()
                 .flat_map(|b| b.vertices.iter().copied())
-                .filter(|c| r.contested.contains_key(c) && !flipped.contains(c))
+                .filter(|c| r.contested.contains_key(c) && !state.flipped.contains(c))
                 .collect();
             flips.sort_unstable();
             flips.dedup();
@@ -329,7 +403,8 @@ pub(crate) fn extend_and_verify(
                 if let Some(&alt) = r.contested.get(&c) {
                     r.roles.insert(c, alt);
                 }
-                flipped.insert(c);
+                state.flipped.insert(c);
+                state.placed.remove(&c.canonical());
                 changed.get_or_insert_with(Vec::new).push(c);
                 stats.ring_flips += 1;
             }
@@ -337,6 +412,20 @@ pub(crate) fn extend_and_verify(
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();
         bad.sort();
         bad.dedup();
+        // Below the worst-case precision limit a rejected triangle may be rounding's doing,
+        // which subdividing only makes worse (and drives the mesh below the r_min of
+        // Sec. 6.3): the input is refused as too close for f64 instead.
+        if let Some(deep) = bad.iter().find(|k| k.k >= h.guaranteed_level()) {
+            return Err(Stop::Precision(format!(
+                "the input points are too close together for this bounding hexagon: the \
+                 dual around level-{} hexagon ({}, {}) misses the angle bounds below the \
+                 level f64 guarantees ({})",
+                deep.k,
+                deep.i,
+                deep.j,
+                h.guaranteed_level()
+            )));
+        }
         h.log.clear();
         for key in bad {
             let before = h.steps;
@@ -344,6 +433,7 @@ pub(crate) fn extend_and_verify(
             stats.verify_splits += h.steps - before;
         }
         drain(h)?;
+        state.forget_near(&h.log);
         changed
             .get_or_insert_with(Vec::new)
             .extend_from_slice(&h.log);
@@ -496,6 +586,172 @@ pub fn relocations_of(
         mc3::build(h, r, chain, &mut moved, &mut patch);
     }
     (moved, patch)
+}
+
+/// How far a triangle is inside the bounds of Sec. 6.1, in degrees: the smaller of
+/// (smallest angle − α) and (90° − largest angle); negative when a bound is broken, and -180
+/// for a triangle that is not counter-clockwise.
+fn angle_margin(t: [Point; 3]) -> f64 {
+    if orient2d(t[0], t[1], t[2]) <= 0.0 {
+        return -180.0;
+    }
+    let a = [
+        angle_deg(t[0], t[1], t[2]),
+        angle_deg(t[1], t[2], t[0]),
+        angle_deg(t[2], t[0], t[1]),
+    ];
+    let lo = a[0].min(a[1]).min(a[2]);
+    let hi = a[0].max(a[1]).max(a[2]);
+    (lo - min_angle_bound()).min(90.0 - hi)
+}
+
+/// Places the centres of contested ring cells (departure from Sec. 5.4, module docs).
+///
+/// A cell in the moved 1-ring of one OCCUPIED_2 point and the fixed 2-ring of another, three
+/// cells apart, cannot in general keep either position: the point's ring wants it shifted by
+/// ½r towards its corner, the other ring wants it at its centre, and when the two points lie
+/// on the far sides of their hexagons each choice leaves an angle below α (Sec. 6.3 lets such
+/// pairs exist without refining them). The angles at a contested cell depend only on its own
+/// position once its neighbours are placed, so each contested cell whose triangles break a
+/// bound is moved, one cell at a time, to the candidate position (its centre, or r/16 to ½r in steps of r/16,
+/// in one of twenty-four directions) that most reduces the summed bound violation of
+/// its triangles, never making an edge shorter than `l_min` (Sec. 6.3); a few sweeps settle
+/// neighbouring contested cells. Cells whose triangles are good stay where their role put
+/// them. A second pass (`with_neighbours`) also moves the ring cells next to contested ones,
+/// accepting only moves that lower the number of bad triangles around the moved cell.
+/// Returns the number of moves.
+fn settle_contested(
+    h: &Hierarchy,
+    r: &Rings,
+    mesh: &mut TriMesh,
+    keys: &[Key],
+    l_min: f64,
+    with_neighbours: bool,
+    movable: &dyn Fn(Key) -> bool,
+) -> u64 {
+    if r.contested.is_empty() && !with_neighbours {
+        return 0;
+    }
+    let slack = SELF_CHECK_SLACK;
+    // The vertices of contested cells, with their lattice centre and radius, sorted by key.
+    let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
+    {
+        // The contested cells; in the second pass every ring cell: when a contested cell
+        // alone cannot reach a good position its neighbour in the same ring has to give way,
+        // and a moved ring cell may come closer to an OCCUPIED_2 point than l_min.
+        let mut wanted: FxHashMap<Key, Key> = FxHashMap::default();
+        for &c in r.contested.keys() {
+            wanted.insert(c.canonical(), c);
+        }
+        if with_neighbours {
+            for &c in r.roles.keys() {
+                if h.is_full_leaf(c) {
+                    wanted.insert(c.canonical(), c);
+                }
+            }
+        }
+        for (v, k) in keys.iter().enumerate() {
+            if let Some(&leaf) = wanted.get(k) {
+                if v >= h.points.len() && movable(*k) {
+                    cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
+                }
+            }
+        }
+    }
+    if cells.is_empty() {
+        return 0;
+    }
+    cells.sort_by_key(|c| c.0);
+    let index: FxHashMap<usize, usize> = cells.iter().enumerate().map(|(n, c)| (c.1, n)).collect();
+    let mut incident: Vec<Vec<usize>> = vec![Vec::new(); cells.len()];
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for &v in tri {
+            if let Some(&n) = index.get(&(v as usize)) {
+                incident[n].push(t);
+            }
+        }
+    }
+    // Around vertex `v` placed at `p`: how far edges fall short of `l_min`, triangles breaking an angle
+    // bound, their summed violation (degrees, negative) and the worst margin.
+    let score = |mesh: &TriMesh, tris: &[usize], v: usize, p: Point| -> Score {
+        let mut sc = Score {
+            short: 0.0,
+            bad: 0,
+            pen: 0.0,
+            worst: f64::INFINITY,
+        };
+        for &t in tris {
+            let mut c = mesh.corners(t);
+            for (m, &w) in mesh.triangles[t].iter().enumerate() {
+                if w as usize == v {
+                    c[m] = p;
+                }
+            }
+            sc.short += (0..3)
+                .map(|e| (l_min - crate::geom::dist(c[e], c[(e + 1) % 3])).max(0.0))
+                .sum::<f64>();
+            let m = angle_margin(c);
+            if m < -slack {
+                sc.pen += m;
+                sc.bad += 1;
+            }
+            sc.worst = sc.worst.min(m);
+        }
+        sc
+    };
+    // The first pass never makes an edge shorter than l_min; the second, which moves cells
+    // that are not contested, never adds a bad triangle around the moved cell either, and
+    // shortens no edge for the sake of an angle (or the reverse).
+    let better = |a: &Score, b: &Score| {
+        if with_neighbours && a.bad != b.bad {
+            return a.bad < b.bad && a.short <= b.short;
+        }
+        if a.short != b.short {
+            return a.short < b.short && (!with_neighbours || a.bad <= b.bad);
+        }
+        a.pen > b.pen || (a.pen == b.pen && a.worst > b.worst)
+    };
+    let mut moves = 0;
+    for _sweep in 0..6 {
+        let mut changed = false;
+        for (n, &(_, v, centre, radius)) in cells.iter().enumerate() {
+            let here = mesh.vertices[v];
+            let mut best_score = score(mesh, &incident[n], v, here);
+            if best_score.bad == 0 && best_score.short == 0.0 {
+                continue;
+            }
+            let mut best = here;
+            for step in 0..=8 {
+                let rho = radius * step as f64 / 16.0;
+                for dir in 0..if step == 0 { 1 } else { 24 } {
+                    let a = (dir as f64 * 15.0).to_radians();
+                    let p = [centre[0] + rho * a.cos(), centre[1] + rho * a.sin()];
+                    let sc = score(mesh, &incident[n], v, p);
+                    if better(&sc, &best_score) {
+                        (best_score, best) = (sc, p);
+                    }
+                }
+            }
+            if best != here {
+                mesh.vertices[v] = best;
+                moves += 1;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    moves
+}
+
+/// How the triangles around one vertex fare (`settle_contested`).
+struct Score {
+    /// Summed shortfall of the edges below `l_min`.
+    short: f64,
+    bad: usize,
+    pen: f64,
+    worst: f64,
 }
 
 /// The leaf of the vertex with canonical key `key`: the end of its chain of central children.

@@ -29,7 +29,24 @@ pub struct FuzzSummary {
     pub worst_min_angle: f64,
     pub worst_max_angle: f64,
     pub max_triangles: usize,
+    /// The largest radius ratio R/(2r) seen over every finished mesh (failing ones too).
+    pub worst_radius_ratio: f64,
+    /// The smallest shortest-edge / d_min seen (inputs with at least two points).
+    pub worst_edge_over_d_min: f64,
+    /// The largest number of exact empty-circle violations in one mesh.
+    pub max_delaunay_violations: usize,
+    /// Cases, refusals and failures per family, in the order of `FAMILIES`.
+    pub families: Vec<FamilyCounts>,
     pub first_failure: Option<FuzzFailure>,
+}
+
+/// What a campaign found in one family of point sets.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FamilyCounts {
+    pub family: &'static str,
+    pub cases: u64,
+    pub refused: u64,
+    pub failures: u64,
 }
 
 /// The first failing case of a campaign.
@@ -43,7 +60,9 @@ pub struct FuzzFailure {
 }
 
 /// The families of generated point sets, in the order cases cycle through them.
-pub const FAMILIES: [&str; 7] = [
+/// The first seven are the original families, whose point sets are generated exactly as
+/// before; the families appended later only renumber the cases.
+pub const FAMILIES: [&str; 9] = [
     "uniform",
     "clustered",
     "collinear",
@@ -51,6 +70,8 @@ pub const FAMILIES: [&str; 7] = [
     "scaled",
     "translated",
     "lattice",
+    "cocircular",
+    "grid",
 ];
 
 /// The angle bounds (degrees) a mesher promises, for the meshers this campaign knows.
@@ -68,6 +89,21 @@ pub fn fuzz_campaign(
     mesher: &str,
     cases: u64,
     seed: u64,
+    progress: impl FnMut(u64),
+) -> FuzzSummary {
+    fuzz_campaign_sized(mesher, cases, seed, MAX_POINTS, progress)
+}
+
+/// Most points in one generated case (before duplicates are dropped).
+pub const MAX_POINTS: usize = 80;
+
+/// `fuzz_campaign` with at most `max_points` points per case (`generate_sized_case`): small
+/// sets mesh fast enough for a test of a thousand cases.
+pub fn fuzz_campaign_sized(
+    mesher: &str,
+    cases: u64,
+    seed: u64,
+    max_points: usize,
     mut progress: impl FnMut(u64),
 ) -> FuzzSummary {
     let mut summary = FuzzSummary {
@@ -79,6 +115,18 @@ pub fn fuzz_campaign(
         worst_min_angle: f64::INFINITY,
         worst_max_angle: f64::NEG_INFINITY,
         max_triangles: 0,
+        worst_radius_ratio: f64::NEG_INFINITY,
+        worst_edge_over_d_min: f64::INFINITY,
+        max_delaunay_violations: 0,
+        families: FAMILIES
+            .iter()
+            .map(|&family| FamilyCounts {
+                family,
+                cases: 0,
+                refused: 0,
+                failures: 0,
+            })
+            .collect(),
         first_failure: None,
     };
     let m: Box<dyn Mesher> = match mesher {
@@ -100,7 +148,9 @@ pub fn fuzz_campaign(
     };
     let bounds = angle_bounds(mesher);
     for case in 0..cases {
-        let (family, input) = generate_case(seed, case);
+        let (family, input) = generate_sized_case(seed, case, max_points);
+        let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
+        summary.families[fam].cases += 1;
         let outcome = match m.mesh(&input, &Params::default()) {
             Ok(run) if !run.complete => Err(format!(
                 "stopped early without a budget: {:?}",
@@ -112,6 +162,15 @@ pub fn fuzz_campaign(
                     // mesher promises (radius ratio, shortest edge, Delaunay for `hex`).
                     let promised = quality::Bounds::parse(mesher).ok();
                     let v = quality::verdict(&run.mesh, Some(&input), promised.as_ref());
+                    let mt = &v.metrics;
+                    if let Some(w) = mt.radius_ratio_max {
+                        summary.worst_radius_ratio = summary.worst_radius_ratio.max(w.value);
+                    }
+                    if let Some(e) = mt.shortest_edge_over_d_min {
+                        summary.worst_edge_over_d_min = summary.worst_edge_over_d_min.min(e);
+                    }
+                    summary.max_delaunay_violations =
+                        summary.max_delaunay_violations.max(mt.delaunay_violations);
                     if v.passed() {
                         Ok(stats)
                     } else {
@@ -128,6 +187,7 @@ pub fn fuzz_campaign(
                 ..
             }) => {
                 summary.refused += 1;
+                summary.families[fam].refused += 1;
                 Ok(())
             }
             Err(e) => Err(e.to_string()),
@@ -135,6 +195,7 @@ pub fn fuzz_campaign(
         summary.cases += 1;
         if let Err(message) = outcome {
             summary.failures += 1;
+            summary.families[fam].failures += 1;
             if summary.first_failure.is_none() {
                 let path = write_failure(mesher, seed, case, family, &input).ok();
                 summary.first_failure = Some(FuzzFailure {
@@ -153,9 +214,26 @@ pub fn fuzz_campaign(
 /// The input of case `case` of a campaign seeded `seed`: the family cycles with the case
 /// number, the rest comes from a PCG stream of its own.
 pub fn generate_case(seed: u64, case: u64) -> (&'static str, Pslg) {
-    let mut rng = Pcg64::new(seed as u128, case as u128);
+    generate_sized_case(seed, case, MAX_POINTS)
+}
+
+/// `generate_case` with 1 to `max_points` points drawn instead of 1 to `MAX_POINTS` (the same
+/// cases when `max_points == MAX_POINTS`).
+pub fn generate_sized_case(seed: u64, case: u64, max_points: usize) -> (&'static str, Pslg) {
     let family = FAMILIES[(case % FAMILIES.len() as u64) as usize];
-    let n = rng.random_range(1..=80usize);
+    (family, sized_family_case(seed, case, family, max_points))
+}
+
+/// The input of family `family` drawn from the PCG stream of case `case` of seed `seed`: the
+/// point set `generate_case` gives when the case falls on that family. Keeps a case found
+/// under an older family cycle reproducible. An unknown family name gives lattice points.
+pub fn generate_family_case(seed: u64, case: u64, family: &str) -> Pslg {
+    sized_family_case(seed, case, family, MAX_POINTS)
+}
+
+fn sized_family_case(seed: u64, case: u64, family: &str, max_points: usize) -> Pslg {
+    let mut rng = Pcg64::new(seed as u128, case as u128);
+    let n = rng.random_range(1..=max_points.max(1));
     let unit = |rng: &mut Pcg64| [rng.random::<f64>(), rng.random::<f64>()];
     let mut points: Vec<Point> = match family {
         "uniform" => (0..n).map(|_| unit(&mut rng)).collect(),
@@ -219,6 +297,8 @@ pub fn generate_case(seed: u64, case: u64) -> (&'static str, Pslg) {
                 })
                 .collect()
         }
+        "cocircular" => cocircular_points(&mut rng, n),
+        "grid" => grid_points(&mut rng, n),
         _ => lattice_points(&mut rng, n),
     };
     dedup(&mut points);
@@ -226,7 +306,70 @@ pub fn generate_case(seed: u64, case: u64) -> (&'static str, Pslg) {
     if family == "lattice" {
         input.hexagon = Some(unit_hexagon());
     }
-    (family, input)
+    input
+}
+
+/// Points on one circle, many of them exactly: the circle has an integer centre and a radius
+/// 65·2^e, and the points c + R·(a/h, b/h) of the Pythagorean triples (3, 4, 5), (5, 12, 13)
+/// and (33, 56, 65) (all sign and swap symmetries, and the four axis points) are exact in
+/// f64, so the 4, 8 or 12 points of a circle are cocircular to the bit. Some sets add points
+/// at random angles (cocircular up to rounding) or a few points inside the circle.
+fn cocircular_points(rng: &mut Pcg64, n: usize) -> Vec<Point> {
+    let centre = [
+        rng.random_range(-8i32..=8) as f64,
+        rng.random_range(-8i32..=8) as f64,
+    ];
+    let radius = 65.0 * 2f64.powi(rng.random_range(-10..=4));
+    let mut dirs: Vec<(f64, f64)> = vec![(1.0, 0.0), (0.0, 1.0), (-1.0, 0.0), (0.0, -1.0)];
+    let triples: [(f64, f64, f64); 3] = [(3.0, 4.0, 5.0), (5.0, 12.0, 13.0), (33.0, 56.0, 65.0)];
+    let used = rng.random_range(0..=triples.len());
+    for &(a, b, h) in &triples[..used] {
+        for (x, y) in [(a, b), (b, a)] {
+            for (sx, sy) in [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)] {
+                dirs.push((sx * x / h, sy * y / h));
+            }
+        }
+    }
+    let mut v: Vec<Point> = dirs
+        .iter()
+        .map(|&(c, s)| [centre[0] + radius * c, centre[1] + radius * s])
+        .collect();
+    match rng.random_range(0..3) {
+        0 => {}
+        1 => {
+            for _ in 0..n.min(40) {
+                let a = rng.random::<f64>() * std::f64::consts::TAU;
+                v.push([centre[0] + radius * a.cos(), centre[1] + radius * a.sin()]);
+            }
+        }
+        _ => {
+            for _ in 0..rng.random_range(1..=4) {
+                let (x, y) = (rng.random::<f64>() - 0.5, rng.random::<f64>() - 0.5);
+                v.push([centre[0] + radius * x, centre[1] + radius * y]);
+            }
+        }
+    }
+    v
+}
+
+/// An exact integer grid (spacing a power of two), unshifted, shifted by half a spacing, or
+/// shifted by a random offset (which rounding makes only nearly regular).
+fn grid_points(rng: &mut Pcg64, n: usize) -> Vec<Point> {
+    let cols = rng.random_range(1..=10usize);
+    let rows = n.div_ceil(cols).clamp(1, 10);
+    let h = 2f64.powi(rng.random_range(-8..=8));
+    let shift = match rng.random_range(0..3) {
+        0 => [0.0, 0.0],
+        1 => [0.5 * h, 0.5 * h],
+        _ => [rng.random::<f64>() * 100.0, rng.random::<f64>() * 100.0],
+    };
+    let mut v = Vec::with_capacity(rows * cols);
+    for r in 0..rows {
+        for c in 0..cols {
+            v.push([shift[0] + c as f64 * h, shift[1] + r as f64 * h]);
+        }
+    }
+    v
 }
 
 /// The regular hexagon of circumradius 1 at the origin.

@@ -13,8 +13,7 @@
 
 use crate::error::{Error, Result};
 use crate::geom::Point;
-use crate::hex::extended::{self, around, extend_and_verify, final_dual, ExtendedStats};
-use crate::hex::lattice::{FxHashSet, Key};
+use crate::hex::extended::{self, around, extend_and_verify, final_dual, ExtendedStats, RingState};
 use crate::hex::refine::{insert_points, InsertError};
 use crate::hex::subdivision::Hierarchy;
 use crate::hex::{insert_error, stop_error};
@@ -26,7 +25,7 @@ use crate::mesher::Params;
 #[derive(Debug, Clone)]
 pub struct IncrementalHex {
     hierarchy: Hierarchy,
-    flipped: FxHashSet<Key>,
+    rings: RingState,
     stats: ExtendedStats,
     /// Why the hierarchy is unusable: an insertion stopped half-way (budget or precision).
     broken: Option<String>,
@@ -42,7 +41,7 @@ impl IncrementalHex {
         }
         Ok(IncrementalHex {
             hierarchy: run.hierarchy,
-            flipped: run.flipped,
+            rings: run.rings,
             stats: run.stats,
             broken: None,
         })
@@ -79,7 +78,7 @@ impl IncrementalHex {
         if let Err(stop) = extend_and_verify(
             h,
             &mut self.stats,
-            &mut self.flipped,
+            &mut self.rings,
             candidates,
             Some(changed),
         ) {
@@ -125,7 +124,7 @@ impl IncrementalHex {
     /// The current mesh: input point i (first the initial points, then the added ones in
     /// order) is vertex i.
     pub fn mesh(&self) -> TriMesh {
-        final_dual(&self.hierarchy, &self.flipped)
+        final_dual(&self.hierarchy, &self.rings)
     }
 
     pub fn hierarchy(&self) -> &Hierarchy {

@@ -128,11 +128,17 @@ mod tests {
         assert!(r.contains(changed));
         assert!(r.contains(changed.central_child()));
         assert!(r.contains(Key::new(5, 15, -7)));
-        assert!(!r.contains(Key::new(5, 16, -7)), "outside the disc of radius 2");
+        assert!(
+            !r.contains(Key::new(5, 16, -7)),
+            "outside the disc of radius 2"
+        );
         assert!(r.contains(Key::new(0, 0, 0)));
         assert!(r.contains(Key::new(3, 3, -2)));
         assert!(r.contains(Key::new(7, 52, -28)));
-        assert!(!r.contains(Key::new(8, 104, -56)), "three levels below the changed cell");
+        assert!(
+            !r.contains(Key::new(8, 104, -56)),
+            "three levels below the changed cell"
+        );
     }
 
     #[test]

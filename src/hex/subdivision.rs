@@ -276,6 +276,12 @@ impl Hierarchy {
             .min(MAX_LEVEL);
     }
 
+    /// The deepest level f64 places to the angle tolerance in the worst case (`level_limit`),
+    /// whatever `allow_checked_levels` opened below it.
+    pub fn guaranteed_level(&self) -> u8 {
+        self.guaranteed_level
+    }
+
     /// True when some hexagon lies below the worst-case precision limit, so the output's
     /// angles must be measured before it is trusted.
     pub fn needs_angle_check(&self) -> bool {

@@ -95,11 +95,22 @@ impl Mesher for Hex {
     }
 
     fn supports_segments(&self) -> bool {
-        false
+        true
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let start = Instant::now();
+        // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
+        if input.has_segments() {
+            let out = crate::hex::pslg::mesh_pslg(input, params)?;
+            return Ok(MeshRun {
+                mesh: out.mesh,
+                complete: true,
+                stop_reason: None,
+                steps: out.hierarchy.steps,
+                elapsed: start.elapsed(),
+            });
+        }
         let out = mesh_extended(input, params)?;
         if let Some(t) = dual::first_inverted(&out.mesh) {
             return Err(Error::mesher(
@@ -226,7 +237,7 @@ fn refine_and_verify(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<Tri
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
+pub(crate) fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
     let r = rings(h);
     let mut acts = r.conflicts.clone();
     for &key in candidates {
@@ -276,7 +287,7 @@ fn extended_actions(h: &Hierarchy, candidates: &[Key]) -> Vec<Key> {
 /// next level around each (its children and the rings of a point moved into them), its own
 /// level (neighbours that got fins, rings that lost their point), and the level above (hexagons
 /// whose fins border those neighbours). Sorted, without duplicates.
-fn around(subdivided: &[Key]) -> Vec<Key> {
+pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
     let mut out = Vec::new();
     let mut disc = |c: Key, radius: i64| {
         for di in -radius..=radius {

@@ -98,31 +98,167 @@ fn a_square_with_a_square_hole_covers_the_ring_between_them() {
     assert!((area(&run.mesh) - want).abs() < 1e-9, "{}", area(&run.mesh));
 }
 
+/// The region a square outline bounds, with a square hole (seeded) in it, and inside the hole
+/// a smaller square island: nested boundaries, Triangle's .poly semantics.
+fn nested_squares() -> Pslg {
+    let mut p = Pslg::default();
+    add_loop(&mut p, &square([0.0, 0.0], 1.0));
+    add_loop(&mut p, &square([0.0, 0.0], 0.6));
+    add_loop(&mut p, &square([0.02, 0.01], 0.25));
+    p.holes.push([0.0, 0.45]);
+    p
+}
+
+#[test]
+fn nested_boundaries_keep_the_island_inside_the_hole() {
+    let p = nested_squares();
+    let run = mesh_and_check("nested", &p);
+    let want = 4.0 - 1.44 + 0.25;
+    assert!((area(&run.mesh) - want).abs() < 1e-9, "{}", area(&run.mesh));
+}
+
+#[test]
+fn imr_meshes_valid_conforming_with_interior_bounds() {
+    let p = datasets::by_name("imr").expect("imr");
+    let run = mesh_and_check("imr", &p);
+    let split = metrics_split(&run.mesh, &p, on_line_band(&p));
+    println!(
+        "imr: {} triangles (paper 30,551); near-segment angles {:.1}..{:.1} (paper 13.7..133.4); \
+         interior {:.4}..{:.4} (paper 43.9..90)",
+        run.mesh.triangles.len(),
+        split.near.min_angle.map_or(f64::NAN, |w| w.value),
+        split.near.max_angle.map_or(f64::NAN, |w| w.value),
+        split.interior.min_angle.map_or(f64::NAN, |w| w.value),
+        split.interior.max_angle.map_or(f64::NAN, |w| w.value),
+    );
+    let bounds = Bounds::parse("hex").expect("hex bounds");
+    let v = verdict(&run.mesh, Some(&p), Some(&bounds));
+    println!(
+        "imr verdict with the hex bounds (touching = exact): passed {}\n{v}",
+        v.passed()
+    );
+    let valid = verdict(&run.mesh, Some(&p), Some(&Bounds::validity("hex")));
+    assert!(valid.passed(), "{valid}");
+}
+
+#[test]
+fn an_interior_slit_and_an_isolated_point_stay_in_the_domain() {
+    let mut p = Pslg::default();
+    add_loop(&mut p, &square([0.0, 0.0], 1.0));
+    let base = p.points.len() as u32;
+    p.points.extend([[-0.5, -0.2], [0.4, 0.3], [0.3, -0.6]]);
+    p.segments.push([base, base + 1]);
+    let run = mesh_and_check("slit", &p);
+    assert!((area(&run.mesh) - 4.0).abs() < 1e-9, "{}", area(&run.mesh));
+}
+
+#[test]
+fn segments_enclosing_nothing_leave_the_bounding_hexagon_as_the_domain() {
+    let p = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.1], [0.4, 0.6], [0.5, -0.4]],
+        segments: vec![[0, 1], [1, 2]],
+        ..Pslg::default()
+    };
+    let run = mesh_and_check("open-polyline", &p);
+    assert!(run.mesh.triangles.len() > 10);
+}
+
+/// A wedge whose apex angle is `deg` degrees, closed by an arc of chords.
+fn wedge(deg: f64) -> Pslg {
+    let mut poly = vec![[0.0, 0.0]];
+    let n = 6;
+    for i in 0..=n {
+        let a = (deg * i as f64 / n as f64).to_radians();
+        poly.push([a.cos(), a.sin()]);
+    }
+    let mut p = Pslg::default();
+    add_loop(&mut p, &poly);
+    p
+}
+
+#[test]
+fn input_angles_down_to_five_degrees_mesh() {
+    for deg in [60.0, 30.0, 15.0, 5.0] {
+        let p = wedge(deg);
+        let run = mesh_and_check(&format!("wedge-{deg}"), &p);
+        let split = metrics_split(&run.mesh, &p, on_line_band(&p));
+        let near_min = split.near.min_angle.map_or(f64::NAN, |w| w.value);
+        assert!(near_min > 0.0, "wedge {deg}: a degenerate triangle");
+    }
+}
+
+#[test]
+fn many_short_segments_beside_long_ones_mesh() {
+    // A rectangle whose top edge is cut into 40 pieces, beside three single long edges.
+    let mut poly = vec![[0.0, 0.0], [4.0, 0.0]];
+    for i in 0..=40 {
+        poly.push([4.0 - 0.1 * i as f64, 1.0]);
+    }
+    let mut p = Pslg::default();
+    add_loop(&mut p, &poly);
+    let run = mesh_and_check("short-beside-long", &p);
+    assert!((area(&run.mesh) - 4.0).abs() < 1e-9, "{}", area(&run.mesh));
+}
+
+#[test]
+fn crossing_segments_are_refused_with_the_pair_named() {
+    let p = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]],
+        segments: vec![[0, 1], [2, 3]],
+        ..Pslg::default()
+    };
+    match mesh_pslg(&p, &Params::default()) {
+        Err(Error::Input {
+            problem:
+                InputError::CrossingSegments {
+                    first: 0,
+                    second: 1,
+                },
+            ..
+        }) => {}
+        other => panic!("expected crossing segments 0 and 1, got {other:?}"),
+    }
+}
+
+#[test]
+fn a_point_outside_the_bounded_region_is_refused() {
+    let mut p = Pslg::default();
+    add_loop(&mut p, &square([0.0, 0.0], 1.0));
+    p.points.push([1.4, 0.0]);
+    let err = mesh_pslg(&p, &Params::default()).expect_err("outside point");
+    let msg = err.to_string();
+    assert!(
+        msg.contains("input point 4") && msg.contains("outside"),
+        "{msg}"
+    );
+}
+
 #[test]
 #[ignore]
-fn debug_levels() {
-    let which = std::env::var("WHICH").unwrap_or_default();
-    let mut p = Pslg::default();
-    if which == "seg" {
-        p.points = vec![[0.0, 0.0], [1.0, 0.1]];
-        p.segments = vec![[0, 1]];
-    } else if which == "tri" {
-        add_loop(&mut p, &[[0.0, 0.0], [1.0, 0.1], [0.3, 0.8]]);
-    } else {
-        add_loop(&mut p, &square([0.0, 0.0], 1.0));
-        add_loop(&mut p, &square([0.1, -0.05], 0.4));
-        p.holes.push([0.1, -0.05]);
-    }
+fn debug_imr_levels() {
+    let p = datasets::by_name("imr").expect("imr");
     let mut params = Params::default();
-    params.budget.max_steps = Some(
-        std::env::var("STEPS")
-            .map(|s| s.parse().unwrap())
-            .unwrap_or(3000),
-    );
+    params.budget.max_time = Some(std::time::Duration::from_secs(20));
+    let t = std::time::Instant::now();
     let (h, stop) = hexmesh::hex::pslg::refine_pslg(&p, &params).unwrap();
     let mut hist = std::collections::BTreeMap::new();
     for (k, _) in h.leaves() {
         *hist.entry(k.k).or_insert(0) += 1;
     }
-    println!("{stop:?} steps {} levels {hist:?}", h.steps);
+    println!(
+        "{stop:?} steps {} levels {hist:?} in {:?}",
+        h.steps,
+        t.elapsed()
+    );
+}
+
+#[test]
+#[ignore]
+fn debug_imr_mesh() {
+    let p = datasets::by_name("imr").expect("imr");
+    let mut params = Params::default();
+    params.budget.max_time = Some(std::time::Duration::from_secs(100));
+    let t = std::time::Instant::now();
+    let r = mesh_pslg(&p, &params);
+    println!("{:?} in {:?}", r.map(|r| r.stats), t.elapsed());
 }

@@ -83,6 +83,8 @@ pub struct PslgStats {
     pub projected: usize,
     /// Projected centres left out by the omission rules.
     pub omitted: usize,
+    /// Cavity edges flipped so that no interior triangle breaks the bounds.
+    pub flips: u64,
 }
 
 /// The result of `mesh_pslg`.
@@ -326,11 +328,34 @@ fn drive(
         stats.rounds += 1;
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         stats.crossed = crossed.len();
+        let t0 = std::time::Instant::now();
         let r = rings(h);
         let moved = relocations(h, &r);
         let (dual, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
+        let t1 = t0.elapsed();
         let built = insert_segments(h, input, segments, &crossed, dual, keys, stats)?;
+        let t2 = t0.elapsed();
         let bad = interior_offenders(&built);
+        if std::env::var("PSLG_DEBUG").is_ok() {
+            eprintln!(
+                "round {} dual {t1:?} insert {t2:?} check {:?} bad {} tris {} stats {stats:?}",
+                stats.rounds,
+                t0.elapsed(),
+                bad.len(),
+                built.mesh.triangles.len()
+            );
+            for &t in &bad {
+                let c = built.mesh.corners(t);
+                let ang: Vec<f64> = (0..3)
+                    .map(|m| crate::quality::angle_at(c[(m + 2) % 3], c[m], c[(m + 1) % 3]))
+                    .collect();
+                eprintln!(
+                    "  bad {t} {c:?} angles {ang:?} keys {:?} cavity {}",
+                    built.mesh.triangles[t].map(|v| built.keys[v as usize]),
+                    built.cavity.get(t).copied().unwrap_or(false)
+                );
+            }
+        }
         if bad.is_empty() {
             let violations = validate(
                 &built.mesh,
@@ -392,6 +417,8 @@ struct Built {
     /// The leaf hexagon of each vertex (projected centres: the hexagon they came from).
     keys: Vec<Key>,
     on_segment: Vec<bool>,
+    /// For each triangle, true when it comes from the cavity's triangulation.
+    cavity: Vec<bool>,
 }
 
 /// A projected centre (Sec. 7.3): its parameter along the segment, position and hexagon.
@@ -584,19 +611,27 @@ fn insert_segments(
         .filter(|&(t, _)| !removed[t])
         .map(|(_, tri)| *tri)
         .collect();
+    let n_kept = triangles.len();
     if !cavity_points.is_empty() {
-        let (filled, extra_on) = fill_cavity(&vertices, &cavity_points, &boundary, &chains, input)?;
-        triangles.extend(filled);
+        let (mut filled, extra_on) =
+            fill_cavity(&vertices, &cavity_points, &boundary, &chains, input)?;
         for (v, s) in extra_on {
             if !on[v as usize].contains(&s) {
                 on[v as usize].push(s);
             }
         }
+        let on_seg: Vec<bool> = on.iter().map(|s| !s.is_empty()).collect();
+        stats.flips += flip_interior_cavity_triangles(&vertices, &mut filled, &on_seg);
+        triangles.extend(filled);
     }
 
     let on_segment_edge =
         |u: u32, v: u32| on[u as usize].iter().any(|s| on[v as usize].contains(s));
     let keep = carve(&vertices, &triangles, input, on_segment_edge)?;
+    let cavity: Vec<bool> = (0..triangles.len())
+        .filter(|&t| keep[t])
+        .map(|t| t >= n_kept)
+        .collect();
     let triangles: Vec<[u32; 3]> = triangles
         .into_iter()
         .zip(keep)
@@ -644,6 +679,7 @@ fn insert_segments(
         mesh,
         keys: out_keys,
         on_segment: out_on,
+        cavity,
     })
 }
 
@@ -783,6 +819,83 @@ fn fill_cavity(
         .map(|(t, _)| t)
         .collect();
     Ok((filled, extra_on))
+}
+
+/// True when the triangle abc breaks the Sec. 6 angle bounds (with the self-check's slack).
+fn breaks_angle_bounds(c: [Point; 3]) -> bool {
+    let lo = min_angle_bound() - SELF_CHECK_SLACK;
+    let hi = 90.0 + SELF_CHECK_SLACK;
+    (0..3).any(|m| {
+        let a = crate::quality::angle_at(c[(m + 2) % 3], c[m], c[(m + 1) % 3]);
+        a < lo || a > hi
+    })
+}
+
+/// A cavity triangle with no corner on a segment counts as interior and must keep the Sec. 6
+/// bounds; the constrained Delaunay triangulation makes such triangles where the cavity
+/// boundary has a notch (two fixed centres two apart around a third). Where one breaks the
+/// bounds, its edge towards a triangle with a corner on a segment is flipped when the two
+/// form a strictly convex quadrilateral, so that both new triangles touch the segment (they
+/// are near-segment triangles of Sec. 7). Returns the number of flips.
+fn flip_interior_cavity_triangles(
+    vertices: &[Point],
+    tris: &mut [[u32; 3]],
+    on_segment: &[bool],
+) -> u64 {
+    let corners = |t: [u32; 3]| t.map(|v| vertices[v as usize]);
+    let mut by_edge: FxHashMap<(u32, u32), usize> = FxHashMap::default();
+    for (t, tri) in tris.iter().enumerate() {
+        for e in 0..3 {
+            by_edge.insert((tri[e], tri[(e + 1) % 3]), t);
+        }
+    }
+    let mut flips = 0;
+    for t in 0..tris.len() {
+        let tri = tris[t];
+        if tri.iter().any(|&v| on_segment[v as usize]) || !breaks_angle_bounds(corners(tri)) {
+            continue;
+        }
+        for e in 0..3 {
+            let (u, v, w) = (tri[e], tri[(e + 1) % 3], tri[(e + 2) % 3]);
+            let Some(&o) = by_edge.get(&(v, u)) else {
+                continue;
+            };
+            let other = tris[o];
+            let Some(&d) = other.iter().find(|&&x| x != u && x != v) else {
+                continue;
+            };
+            if !on_segment[d as usize] {
+                continue;
+            }
+            let (pu, pv, pw, pd) = (
+                vertices[u as usize],
+                vertices[v as usize],
+                vertices[w as usize],
+                vertices[d as usize],
+            );
+            if orient2d(pu, pd, pw) <= 0.0 || orient2d(pd, pv, pw) <= 0.0 {
+                continue;
+            }
+            for (a, b) in [(u, v), (v, w), (w, u), (v, u), (u, d), (d, v)] {
+                by_edge.remove(&(a, b));
+            }
+            tris[t] = [u, d, w];
+            tris[o] = [d, v, w];
+            for (a, b, x) in [
+                (u, d, t),
+                (d, w, t),
+                (w, u, t),
+                (d, v, o),
+                (v, w, o),
+                (w, d, o),
+            ] {
+                by_edge.insert((a, b), x);
+            }
+            flips += 1;
+            break;
+        }
+    }
+    flips
 }
 
 /// Which triangles lie in the domain (Triangle's .poly semantics without -c): triangles

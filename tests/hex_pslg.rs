@@ -5,7 +5,8 @@
 
 use hexmesh::hex::pslg::{mesh_pslg, PslgRun};
 use hexmesh::quality::{
-    metrics_split, validate, verdict, Bounds, ValidateOptions, ANGLE_SLACK_DEG, HEX_MIN_ANGLE_DEG,
+    metrics_split, validate, verdict, Bounds, ValidateOptions, ANGLE_SLACK_DEG,
+    HEX_MAX_RADIUS_RATIO, HEX_MIN_ANGLE_DEG, HEX_MIN_EDGE_OVER_DMIN,
 };
 use hexmesh::{datasets, Error, InputError, Params, Point, Pslg};
 
@@ -48,6 +49,16 @@ fn mesh_and_check(name: &str, input: &Pslg) -> PslgRun {
             "{name}: interior angles {lo}..{hi}"
         );
         assert_eq!(interior.delaunay_violations, 0, "{name}: interior Delaunay");
+        let rr = interior.radius_ratio_max.map_or(0.0, |w| w.value);
+        assert!(
+            rr <= HEX_MAX_RADIUS_RATIO,
+            "{name}: interior radius ratio {rr}"
+        );
+        let edge = interior.shortest_edge_over_d_min.unwrap_or(f64::INFINITY);
+        assert!(
+            edge >= HEX_MIN_EDGE_OVER_DMIN,
+            "{name}: interior shortest edge / d_min {edge}"
+        );
     }
     let near = &split.near;
     println!(
@@ -231,34 +242,4 @@ fn a_point_outside_the_bounded_region_is_refused() {
         msg.contains("input point 4") && msg.contains("outside"),
         "{msg}"
     );
-}
-
-#[test]
-#[ignore]
-fn debug_imr_levels() {
-    let p = datasets::by_name("imr").expect("imr");
-    let mut params = Params::default();
-    params.budget.max_time = Some(std::time::Duration::from_secs(20));
-    let t = std::time::Instant::now();
-    let (h, stop) = hexmesh::hex::pslg::refine_pslg(&p, &params).unwrap();
-    let mut hist = std::collections::BTreeMap::new();
-    for (k, _) in h.leaves() {
-        *hist.entry(k.k).or_insert(0) += 1;
-    }
-    println!(
-        "{stop:?} steps {} levels {hist:?} in {:?}",
-        h.steps,
-        t.elapsed()
-    );
-}
-
-#[test]
-#[ignore]
-fn debug_imr_mesh() {
-    let p = datasets::by_name("imr").expect("imr");
-    let mut params = Params::default();
-    params.budget.max_time = Some(std::time::Duration::from_secs(100));
-    let t = std::time::Instant::now();
-    let r = mesh_pslg(&p, &params);
-    println!("{:?} in {:?}", r.map(|r| r.stats), t.elapsed());
 }

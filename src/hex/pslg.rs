@@ -328,34 +328,11 @@ fn drive(
         stats.rounds += 1;
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         stats.crossed = crossed.len();
-        let t0 = std::time::Instant::now();
         let r = rings(h);
         let moved = relocations(h, &r);
         let (dual, keys) = dual::extract_moved(h, Placement::Relocated, &moved);
-        let t1 = t0.elapsed();
         let built = insert_segments(h, input, segments, &crossed, dual, keys, stats)?;
-        let t2 = t0.elapsed();
         let bad = interior_offenders(&built);
-        if std::env::var("PSLG_DEBUG").is_ok() {
-            eprintln!(
-                "round {} dual {t1:?} insert {t2:?} check {:?} bad {} tris {} stats {stats:?}",
-                stats.rounds,
-                t0.elapsed(),
-                bad.len(),
-                built.mesh.triangles.len()
-            );
-            for &t in &bad {
-                let c = built.mesh.corners(t);
-                let ang: Vec<f64> = (0..3)
-                    .map(|m| crate::quality::angle_at(c[(m + 2) % 3], c[m], c[(m + 1) % 3]))
-                    .collect();
-                eprintln!(
-                    "  bad {t} {c:?} angles {ang:?} keys {:?} cavity {}",
-                    built.mesh.triangles[t].map(|v| built.keys[v as usize]),
-                    built.cavity.get(t).copied().unwrap_or(false)
-                );
-            }
-        }
         if bad.is_empty() {
             let violations = validate(
                 &built.mesh,
@@ -380,8 +357,15 @@ fn drive(
                 NAME,
                 format!(
                     "after {MAX_ROUNDS} rounds of subdivision, triangle ({:?}, {:?}, {:?}) \
-                     away from the segments still breaks the angle or empty-circle bound",
-                    c[0], c[1], c[2]
+                     away from the segments ({}) still breaks the angle or empty-circle bound",
+                    c[0],
+                    c[1],
+                    c[2],
+                    if built.cavity[t] {
+                        "in the re-triangulated neighbourhood of a segment"
+                    } else {
+                        "in the hexagon dual"
+                    }
                 ),
             )));
         }

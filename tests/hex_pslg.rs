@@ -9,6 +9,7 @@ use hexmesh::quality::{
     HEX_MAX_RADIUS_RATIO, HEX_MIN_ANGLE_DEG, HEX_MIN_EDGE_OVER_DMIN,
 };
 use hexmesh::{datasets, Error, InputError, Params, Point, Pslg};
+use proptest::prelude::*;
 
 /// The distance within which a vertex counts as on a segment in `quality::validate`'s
 /// conformity check (2^-40 of the coordinate scale): a projected centre is rounded onto the
@@ -242,4 +243,51 @@ fn a_point_outside_the_bounded_region_is_refused() {
         msg.contains("input point 4") && msg.contains("outside"),
         "{msg}"
     );
+}
+
+/// A polygon star-shaped about `c`: vertex i at angle 2πi/n + `twist`, at radius `radii[i]`.
+fn star(c: Point, radii: &[f64], twist: f64) -> Vec<Point> {
+    let n = radii.len() as f64;
+    radii
+        .iter()
+        .enumerate()
+        .map(|(i, &r)| {
+            let a = std::f64::consts::TAU * i as f64 / n + twist;
+            [c[0] + r * a.cos(), c[1] + r * a.sin()]
+        })
+        .collect()
+}
+
+fn shoelace(poly: &[Point]) -> f64 {
+    (0..poly.len())
+        .map(|i| {
+            let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum::<f64>()
+        / 2.0
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Random simple polygons with a hole: an outer star (radii 0.5–1, at least 5 vertices,
+    /// so it contains the disc of radius 0.4) around a smaller star (radii 0.1–0.3) whose
+    /// centre seeds the hole.
+    #[test]
+    fn random_star_polygons_with_a_star_hole_mesh_valid_and_conforming(
+        outer in prop::collection::vec(0.5f64..1.0, 5..14),
+        inner in prop::collection::vec(0.1f64..0.3, 3..10),
+        twist in 0.0f64..1.0,
+    ) {
+        let outer_poly = star([0.0, 0.0], &outer, twist);
+        let inner_poly = star([0.0, 0.0], &inner, 2.0 * twist);
+        let mut p = Pslg::default();
+        add_loop(&mut p, &outer_poly);
+        add_loop(&mut p, &inner_poly);
+        p.holes.push([0.0, 0.0]);
+        let run = mesh_and_check("star", &p);
+        let want = shoelace(&outer_poly) - shoelace(&inner_poly);
+        prop_assert!((area(&run.mesh) - want).abs() < 1e-9 * want.abs().max(1.0));
+    }
 }

@@ -49,7 +49,7 @@ use std::collections::BTreeMap;
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
 use crate::error::{Error, InputError, Result};
-use crate::geom::{dist, incircle, orient2d, Point};
+use crate::geom::{dist, incircle, min_enclosing_circle, orient2d, Hexagon, Point};
 use crate::hex::classify::{fin_mask, rings};
 use crate::hex::dual::{self, Placement};
 use crate::hex::extended::{around, extended_actions, min_angle_bound, relocations};
@@ -230,7 +230,7 @@ pub fn mesh_pslg(input: &Pslg, params: &Params) -> Result<PslgRun> {
     // The segments are checked here (crossings, points on segments); the hierarchy is the
     // one of the point set, whose entry check refuses segments.
     input.validate_input()?;
-    let mut h = super::new_hierarchy(&Pslg::from_points(input.points.clone()), params, NAME)?;
+    let mut h = super::new_hierarchy(&point_set(input), params, NAME)?;
     let segments = segment_points(input);
     let mut stats = PslgStats::default();
     match drive(&mut h, input, &segments, &mut stats) {
@@ -270,7 +270,7 @@ fn apply(h: &mut Hierarchy, actions: Vec<Key>) -> std::result::Result<u64, Stop>
 /// reason a budget stopped it early: for pictures and for finding where refinement goes.
 pub fn refine_pslg(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<String>)> {
     input.validate_input()?;
-    let mut h = super::new_hierarchy(&Pslg::from_points(input.points.clone()), params, NAME)?;
+    let mut h = super::new_hierarchy(&point_set(input), params, NAME)?;
     let segments = segment_points(input);
     let mut stats = PslgStats::default();
     let outcome = refine_simple(&mut h).and_then(|()| {
@@ -281,6 +281,21 @@ pub fn refine_pslg(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<S
         Ok(()) => Ok((h, None)),
         Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),
         Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
+    }
+}
+
+/// How much larger than the points' minimum enclosing circle the bounding hexagon's inscribed
+/// circle is for a PSLG (module docs).
+pub const PSLG_MARGIN: f64 = 1.25;
+
+/// The point set the hierarchy is built on: the input points, in a bounding hexagon whose
+/// inscribed circle is `PSLG_MARGIN` times their minimum enclosing circle.
+fn point_set(input: &Pslg) -> Pslg {
+    let (center, radius) = min_enclosing_circle(&input.points);
+    Pslg {
+        points: input.points.clone(),
+        hexagon: Some(Hexagon::with_inradius(center, radius * PSLG_MARGIN)),
+        ..Pslg::default()
     }
 }
 
@@ -560,6 +575,7 @@ fn insert_segments(
     for (t, tri) in dual.triangles.iter().enumerate() {
         removed[t] = tri.iter().any(|&v| !is_new(v) && in_crossed[v as usize]);
     }
+    grow_cavity(&vertices, &dual.triangles, segments, &mut removed);
     // Cavity boundary: directed edges of removed triangles whose reverse is not one.
     let mut removed_edges: FxHashSet<(u32, u32)> = FxHashSet::default();
     for (t, tri) in dual.triangles.iter().enumerate() {
@@ -803,6 +819,97 @@ fn fill_cavity(
         .map(|(t, _)| t)
         .collect();
     Ok((filled, extra_on))
+}
+
+/// Adds to the cavity every dual triangle that meets a segment (exact) although none of its
+/// corners lies in a crossed hexagon: relocated centres (Sec. 5.4) and level transitions let a
+/// dual triangle reach beyond its three hexagons. Such a triangle touches the cavity, so the
+/// search spreads from the cavity over triangles sharing a corner with it.
+fn grow_cavity(
+    vertices: &[Point],
+    triangles: &[[u32; 3]],
+    segments: &[[Point; 2]],
+    removed: &mut [bool],
+) {
+    if segments.is_empty() {
+        return;
+    }
+    // A uniform grid of segment bounding boxes.
+    let mut lo = [f64::INFINITY; 2];
+    let mut hi = [f64::NEG_INFINITY; 2];
+    for p in segments.iter().flatten() {
+        for d in 0..2 {
+            lo[d] = lo[d].min(p[d]);
+            hi[d] = hi[d].max(p[d]);
+        }
+    }
+    let side = ((segments.len() as f64).sqrt().ceil() as usize).clamp(1, 256);
+    let size = [
+        ((hi[0] - lo[0]) / side as f64).max(f64::MIN_POSITIVE),
+        ((hi[1] - lo[1]) / side as f64).max(f64::MIN_POSITIVE),
+    ];
+    let cell = |x: f64, d: usize| -> usize {
+        let k = ((x - lo[d]) / size[d]).floor();
+        if k.is_nan() || k < 0.0 {
+            0
+        } else {
+            (k as usize).min(side - 1)
+        }
+    };
+    let mut grid: Vec<Vec<usize>> = vec![Vec::new(); side * side];
+    for (s, [a, b]) in segments.iter().enumerate() {
+        for i in cell(a[0].min(b[0]), 0)..=cell(a[0].max(b[0]), 0) {
+            for j in cell(a[1].min(b[1]), 1)..=cell(a[1].max(b[1]), 1) {
+                grid[i * side + j].push(s);
+            }
+        }
+    }
+    let meets = |t: usize| {
+        let c = triangles[t].map(|v| vertices[v as usize]);
+        let (mut tlo, mut thi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in &c {
+            for d in 0..2 {
+                tlo[d] = tlo[d].min(p[d]);
+                thi[d] = thi[d].max(p[d]);
+            }
+        }
+        if thi[0] < lo[0] || thi[1] < lo[1] || tlo[0] > hi[0] || tlo[1] > hi[1] {
+            return false;
+        }
+        for i in cell(tlo[0], 0)..=cell(thi[0], 0) {
+            for j in cell(tlo[1], 1)..=cell(thi[1], 1) {
+                for &s in &grid[i * side + j] {
+                    let [a, b] = segments[s];
+                    if polygon_meets_segment(&c, a, b) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    };
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); vertices.len()];
+    for (t, tri) in triangles.iter().enumerate() {
+        for &v in tri {
+            around[v as usize].push(t);
+        }
+    }
+    let mut queued = removed.to_vec();
+    let mut stack: Vec<usize> = (0..triangles.len()).filter(|&t| removed[t]).collect();
+    while let Some(t) = stack.pop() {
+        for &v in &triangles[t] {
+            for &u in &around[v as usize] {
+                if queued[u] {
+                    continue;
+                }
+                queued[u] = true;
+                if meets(u) {
+                    removed[u] = true;
+                    stack.push(u);
+                }
+            }
+        }
+    }
 }
 
 /// True when the triangle abc breaks the Sec. 6 angle bounds (with the self-check's slack).

@@ -291,3 +291,29 @@ proptest! {
         prop_assert!((area(&run.mesh) - want).abs() < 1e-9 * want.abs().max(1.0));
     }
 }
+
+/// Every configuration a test or the proptest found, kept under tests/fixtures/hex/pslg-*.poly
+/// (each file's comment says what it found), meshes valid and conforming with the interior
+/// bounds, and the refinement stays bounded.
+#[test]
+fn pslg_fixtures_mesh_valid_and_conforming() {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/hex");
+    let mut files: Vec<_> = std::fs::read_dir(&dir)
+        .expect("fixture directory")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| {
+            let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+            name.is_some_and(|n| n.starts_with("pslg-") && n.ends_with(".poly"))
+        })
+        .collect();
+    files.sort();
+    assert!(files.len() >= 3, "{files:?}");
+    for path in files {
+        let name = path
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+        let input = hexmesh::io::read_input(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let run = mesh_and_check(&name, &input);
+        assert!(run.stats.rule_splits < 20_000, "{name}: {:?}", run.stats);
+    }
+}

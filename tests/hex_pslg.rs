@@ -318,3 +318,26 @@ fn pslg_fixtures_mesh_valid_and_conforming() {
         assert!(run.stats.rule_splits < 20_000, "{name}: {:?}", run.stats);
     }
 }
+
+#[test]
+fn the_hex_mesher_takes_segments_through_its_trait() {
+    use hexmesh::Mesher;
+    let hex = hexmesh::hex::extended::Hex;
+    assert!(hex.supports_segments());
+    let mut p = Pslg::default();
+    add_loop(&mut p, &square([0.0, 0.0], 1.0));
+    let run = hex.mesh(&p, &Params::default()).expect("a square meshes");
+    assert!(run.complete);
+    let v = verdict(&run.mesh, Some(&p), Some(&Bounds::validity("hex")));
+    assert!(v.passed(), "{v}");
+    assert!((area(&run.mesh) - 4.0).abs() < 1e-9);
+}
+
+#[test]
+fn a_budget_that_runs_out_is_an_error_naming_it() {
+    let p = datasets::by_name("imr").expect("imr");
+    let mut params = Params::default();
+    params.budget.max_steps = Some(50);
+    let err = mesh_pslg(&p, &params).expect_err("50 subdivisions cannot mesh imr");
+    assert!(err.to_string().contains("step budget"), "{err}");
+}

@@ -77,6 +77,15 @@ fn mesh_and_check(name: &str, input: &Pslg) -> PslgRun {
     run
 }
 
+/// `quality::verdict` with the hex bounds, which decides "touching a segment" exactly: it
+/// agrees with the tolerance band above when every projected centre lies exactly on its
+/// segment, as on axis-parallel segments.
+fn assert_hex_verdict(name: &str, input: &Pslg, run: &PslgRun) {
+    let bounds = Bounds::parse("hex").expect("hex bounds");
+    let v = verdict(&run.mesh, Some(input), Some(&bounds));
+    assert!(v.passed(), "{name}: {v}");
+}
+
 /// A closed polygon's vertices appended to `p`, with its segments.
 fn add_loop(p: &mut Pslg, poly: &[Point]) {
     let base = p.points.len() as u32;
@@ -106,6 +115,7 @@ fn a_square_with_a_square_hole_covers_the_ring_between_them() {
     add_loop(&mut p, &square([0.1, -0.05], 0.4));
     p.holes.push([0.1, -0.05]);
     let run = mesh_and_check("square-hole", &p);
+    assert_hex_verdict("square-hole", &p, &run);
     let want = 4.0 - 0.64;
     assert!((area(&run.mesh) - want).abs() < 1e-9, "{}", area(&run.mesh));
 }
@@ -125,6 +135,7 @@ fn nested_squares() -> Pslg {
 fn nested_boundaries_keep_the_island_inside_the_hole() {
     let p = nested_squares();
     let run = mesh_and_check("nested", &p);
+    assert_hex_verdict("nested", &p, &run);
     let want = 4.0 - 1.44 + 0.25;
     assert!((area(&run.mesh) - want).abs() < 1e-9, "{}", area(&run.mesh));
 }
@@ -209,6 +220,7 @@ fn many_short_segments_beside_long_ones_mesh() {
     let mut p = Pslg::default();
     add_loop(&mut p, &poly);
     let run = mesh_and_check("short-beside-long", &p);
+    assert_hex_verdict("short-beside-long", &p, &run);
     assert!((area(&run.mesh) - 4.0).abs() < 1e-9, "{}", area(&run.mesh));
 }
 

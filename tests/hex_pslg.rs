@@ -154,6 +154,18 @@ fn imr_meshes_valid_conforming_with_interior_bounds() {
         split.interior.min_angle.map_or(f64::NAN, |w| w.value),
         split.interior.max_angle.map_or(f64::NAN, |w| w.value),
     );
+    let hexagon = metrics_split(&run.mesh, &p, run.stats.crossed_radius);
+    println!(
+        "imr, near = within one hexagon (r = {:.5}) of a segment: {} near triangles, angles \
+         {:.1}..{:.1}; {} interior, angles {:.4}..{:.4}",
+        run.stats.crossed_radius,
+        hexagon.near.triangles,
+        hexagon.near.min_angle.map_or(f64::NAN, |w| w.value),
+        hexagon.near.max_angle.map_or(f64::NAN, |w| w.value),
+        hexagon.interior.triangles,
+        hexagon.interior.min_angle.map_or(f64::NAN, |w| w.value),
+        hexagon.interior.max_angle.map_or(f64::NAN, |w| w.value),
+    );
     let bounds = Bounds::parse("hex").expect("hex bounds");
     let v = verdict(&run.mesh, Some(&p), Some(&bounds));
     println!(
@@ -352,4 +364,12 @@ fn a_budget_that_runs_out_is_an_error_naming_it() {
     params.budget.max_steps = Some(50);
     let err = mesh_pslg(&p, &params).expect_err("50 subdivisions cannot mesh imr");
     assert!(err.to_string().contains("step budget"), "{err}");
+}
+
+#[test]
+fn the_same_pslg_meshes_to_the_same_bits_twice() {
+    let p = nested_squares();
+    let a = mesh_pslg(&p, &Params::default()).expect("first");
+    let b = mesh_pslg(&p, &Params::default()).expect("second");
+    assert_eq!(a.mesh, b.mesh);
 }

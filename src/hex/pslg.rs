@@ -45,9 +45,12 @@
 //! - An input point outside the region the segments bound (or inside a hole) is refused: it
 //!   could not be a vertex of the mesh.
 //! - The bounding hexagon of a PSLG (Sec. 3 fits it to the points) has an inscribed circle
-//!   `PSLG_MARGIN` = 1.25 times the points' minimum enclosing circle: the dual does not reach
+//!   `PSLG_MARGIN` = 1.25 times the points' minimum enclosing circle R: the dual does not reach
 //!   the bounding hexagon's corners, and a segment next to a corner ran outside the dual
-//!   (fixture pslg-star-spike-near-root-corner-proptest.poly).
+//!   (fixture pslg-star-spike-near-root-corner-proptest.poly). The dual of the root split
+//!   once (always done) covers the hexagon through the root's edge midpoints, of inradius
+//!   (√3/2)·1.25·R ≈ 1.08·R, so every segment lies inside the dual at every level (any margin
+//!   above 2/√3 would do).
 //! - Dual triangles that meet a segment without a corner in a crossed hexagon (relocated
 //!   centres, level transitions) join the cavity (`grow_cavity`).
 //! - The constrained Delaunay triangulation puts a triangle of three fixed centres into a
@@ -104,6 +107,9 @@ pub struct PslgStats {
     pub rounds: u64,
     /// Leaves crossed by a segment in the final hierarchy.
     pub crossed: usize,
+    /// The circumradius of the largest of them: "one hexagon" of the near-segment band of
+    /// Sec. 7 (0 without crossed leaves).
+    pub crossed_radius: f64,
     /// Projected centres used as mesh vertices (Sec. 7.3).
     pub projected: usize,
     /// Projected centres left out by the omission rules.
@@ -368,6 +374,10 @@ fn drive(
         stats.rounds += 1;
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         stats.crossed = crossed.len();
+        stats.crossed_radius = crossed
+            .keys()
+            .map(|k| h.lattice.radius(k.k))
+            .fold(0.0, f64::max);
         let r = rings(h);
         let moved = relocations(h, &r);
         let (dual, keys) = dual::extract_moved(h, Placement::Relocated, &moved);

@@ -373,3 +373,26 @@ fn the_same_pslg_meshes_to_the_same_bits_twice() {
     let b = mesh_pslg(&p, &Params::default()).expect("second");
     assert_eq!(a.mesh, b.mesh);
 }
+
+#[test]
+fn a_vertex_with_six_segments_and_a_fine_circle_mesh() {
+    // Six spokes from the centre of a 200-chord circle: a vertex of degree six, narrow sectors
+    // and many short segments.
+    let n = 200;
+    let circle: Vec<Point> = (0..n)
+        .map(|i| {
+            let a = std::f64::consts::TAU * i as f64 / n as f64;
+            [a.cos(), a.sin()]
+        })
+        .collect();
+    let mut p = Pslg::default();
+    add_loop(&mut p, &circle);
+    let centre = p.points.len() as u32;
+    p.points.push([0.013, -0.007]);
+    for k in 0..6u32 {
+        p.segments.push([centre, k * (n as u32 / 6)]);
+    }
+    let run = mesh_and_check("spokes", &p);
+    let want = shoelace(&circle);
+    assert!((area(&run.mesh) - want).abs() < 1e-9, "{}", area(&run.mesh));
+}

@@ -396,3 +396,21 @@ fn a_vertex_with_six_segments_and_a_fine_circle_mesh() {
     let want = shoelace(&circle);
     assert!((area(&run.mesh) - want).abs() < 1e-9, "{}", area(&run.mesh));
 }
+
+/// Two segments 0.01 apart (neither sharing an endpoint, so the hexagons between them are
+/// subdivided until each meets one) and an isolated point 0.003 beside one of them.
+#[test]
+fn nearly_parallel_segments_and_a_point_beside_a_segment_mesh() {
+    let mut p = Pslg::default();
+    add_loop(&mut p, &square([0.0, 0.0], 1.0));
+    let b = p.points.len() as u32;
+    p.points.extend([
+        [-0.5, 0.0],
+        [0.5, 0.001],
+        [-0.5, 0.01],
+        [0.5, 0.012],
+        [0.1, -0.003],
+    ]);
+    p.segments.extend([[b, b + 1], [b + 2, b + 3]]);
+    mesh_and_check("close-features", &p);
+}

@@ -40,7 +40,8 @@
 //!   positive area (exact), every segment a chain of mesh edges, every input point a vertex
 //!   (`quality::validate`); triangles with no corner on a segment must meet the Sec. 6 angle
 //!   bounds and the exact empty-circle test. Where the bounds fail, the coarsest hexagon of the
-//!   offending triangle is subdivided and everything runs again, at most `MAX_ROUNDS` times;
+//!   offending triangle is subdivided and everything runs again, at most `MAX_ROUNDS` times
+//!   and while the hexagons grow less than `MAX_GROWTH`-fold;
 //!   when validity fails or the rounds run out, the mesher returns an error naming the place.
 //! - An input point outside the region the segments bound (or inside a hole) is refused: it
 //!   could not be a vertex of the mesh.
@@ -93,7 +94,13 @@ use crate::mesher::Params;
 use crate::quality::{validate, ValidateOptions};
 
 /// Rounds of mesh-then-check before the mesher gives up on a configuration.
-pub const MAX_ROUNDS: u64 = 12;
+pub const MAX_ROUNDS: u64 = 6;
+
+/// The self-check's subdivisions may make the hierarchy at most this many times larger than
+/// after the first round: a subdivision next to a segment refines the whole band along it
+/// (Sec. 7.2), so a configuration that subdivision does not repair would grow the mesh
+/// geometrically until memory runs out.
+pub const MAX_GROWTH: usize = 8;
 
 /// Slack of the interior self-check, as in the extended refinement's.
 const SELF_CHECK_SLACK: f64 = 1e-7;
@@ -374,9 +381,21 @@ fn drive(
 ) -> std::result::Result<(TriMesh, Vec<bool>), Fail> {
     refine_simple(h)?;
     let mut candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
+    let mut first_size = None;
     loop {
         stats.rounds += 1;
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
+        let first = *first_size.get_or_insert(h.full_leaves);
+        if h.full_leaves > MAX_GROWTH * first {
+            return Err(Fail::Error(Error::mesher(
+                NAME,
+                format!(
+                    "the self-check's subdivisions grew the hexagons from {first} to {} \
+                     without repairing the triangles away from the segments; giving up",
+                    h.full_leaves
+                ),
+            )));
+        }
         stats.crossed = crossed.len();
         stats.crossed_radius = crossed
             .keys()

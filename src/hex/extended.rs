@@ -129,11 +129,22 @@ impl Mesher for Hex {
     }
 
     fn supports_segments(&self) -> bool {
-        false
+        true
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let start = Instant::now();
+        // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
+        if input.has_segments() {
+            let out = crate::hex::pslg::mesh_pslg(input, params)?;
+            return Ok(MeshRun {
+                mesh: out.mesh,
+                complete: true,
+                stop_reason: None,
+                steps: out.hierarchy.steps,
+                elapsed: start.elapsed(),
+            });
+        }
         let out = mesh_extended(input, params)?;
         if let Some(t) = dual::first_inverted(&out.mesh) {
             return Err(Error::mesher(
@@ -443,7 +454,11 @@ pub(crate) fn extend_and_verify(
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
+pub(crate) fn extended_actions(
+    h: &Hierarchy,
+    r: &Rings,
+    candidates: &[Key],
+) -> Vec<(Key, Why)> {
     let mut acts: Vec<(Key, Why)> = r.conflicts.iter().map(|&k| (k, Why::Other)).collect();
     for &key in candidates {
         if !h.is_full_leaf(key) {
@@ -499,7 +514,7 @@ fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, W
 
 /// Which rule asked for a subdivision (for `ExtendedStats`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-enum Why {
+pub(crate) enum Why {
     /// A MOVED_CENTER_3 rule.
     Mc3,
     Other,

@@ -8,6 +8,7 @@
 //! - `subdivision`: split, join, balancing, point location (Sec. 3).
 //! - `refine`: refinement rules 1–5 on a work list (Sec. 4.1).
 //! - `dual`: the dual triangle mesh (Sec. 4.2).
+//! - `pslg`: planar straight-line graphs: segments, holes, the domain (Sec. 7).
 //! - `picture`: SVG of the hexagons with the dual over them (Figs. 3, 4, 7).
 //! - `fuzz`: a seeded campaign that checks the promised bounds on random point sets.
 
@@ -19,6 +20,7 @@ pub mod incremental;
 pub mod lattice;
 pub mod mc3;
 pub mod picture;
+pub mod pslg;
 pub mod refine;
 pub mod region;
 pub mod subdivision;

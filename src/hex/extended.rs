@@ -186,12 +186,15 @@ pub struct RingState {
 
 impl RingState {
     /// Forgets the places of cells near `changed`: their class or their neighbours changed.
-    fn forget_near(&mut self, changed: &[Key]) {
+    /// A vertex is judged by its leaf, the level its triangles are checked at: its canonical
+    /// key can be many levels coarser, where a region reaches much farther.
+    fn forget_near(&mut self, h: &Hierarchy, changed: &[Key]) {
         if self.placed.is_empty() || changed.is_empty() {
             return;
         }
         let near = Region::around(changed, 3);
-        self.placed.retain(|k, _| !near.contains(*k));
+        self.placed
+            .retain(|k, _| !near.contains(leaf_of_vertex(h, *k)));
     }
 }
 
@@ -309,7 +312,7 @@ pub(crate) fn extend_and_verify(
         c.distance * crate::quality::bounds::HEX_MIN_EDGE_OVER_DMIN * (1.0 + 1e-9)
     });
     if let Some(c) = &changed {
-        state.forget_near(c);
+        state.forget_near(h, c);
     }
     loop {
         stats.rounds += 1;
@@ -335,7 +338,7 @@ pub(crate) fn extend_and_verify(
             drain(h)?;
             if let Some(c) = changed.as_mut() {
                 c.extend_from_slice(&h.log);
-                state.forget_near(&h.log);
+                state.forget_near(h, &h.log);
             }
             candidates = around(&h.log);
         }
@@ -371,7 +374,11 @@ pub(crate) fn extend_and_verify(
             };
             stats.checked_triangles += mesh.triangles.len() as u64;
             let before = mesh.vertices.clone();
-            let movable = |k: Key| movable.as_ref().is_none_or(|m| m.contains(k));
+            let movable = |k: Key| {
+                movable
+                    .as_ref()
+                    .is_none_or(|m| m.contains(leaf_of_vertex(h, k)))
+            };
             stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, false, &movable);
             stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, true, &movable);
             for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
@@ -444,7 +451,7 @@ pub(crate) fn extend_and_verify(
             stats.verify_splits += h.steps - before;
         }
         drain(h)?;
-        state.forget_near(&h.log);
+        state.forget_near(h, &h.log);
         changed
             .get_or_insert_with(Vec::new)
             .extend_from_slice(&h.log);
@@ -454,11 +461,7 @@ pub(crate) fn extend_and_verify(
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-pub(crate) fn extended_actions(
-    h: &Hierarchy,
-    r: &Rings,
-    candidates: &[Key],
-) -> Vec<(Key, Why)> {
+pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
     let mut acts: Vec<(Key, Why)> = r.conflicts.iter().map(|&k| (k, Why::Other)).collect();
     for &key in candidates {
         if !h.is_full_leaf(key) {

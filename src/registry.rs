@@ -7,6 +7,7 @@ use crate::mesher::Mesher;
 /// Every registered mesher, in report order.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
     vec![
+        Box::new(crate::hex::extended::Hex),
         Box::new(crate::hex::HexSimple),
         #[cfg(feature = "cgal")]
         Box::new(crate::reference::cgal::Cgal),

@@ -33,9 +33,15 @@ pub fn write_hexagons_svg(input: &Pslg, params: &Params, path: &Path) -> Result<
 /// subdivision, each full hexagon coloured by its class of Sec. 5.1, with the relocated dual
 /// over it. This is what `hexmesh mesh … --mesher hex --hexagons P.svg` calls.
 pub fn write_extended_hexagons_svg(input: &Pslg, params: &Params, path: &Path) -> Result<()> {
-    let run = super::extended::mesh_extended(input, params)?;
-    let classes = full_leaf_classes(&run.hierarchy);
-    write_svg(path, svg(&run.hierarchy, &run.mesh, Some(&classes)))
+    let (h, mesh) = if input.has_segments() {
+        let run = super::pslg::mesh_pslg(input, params)?;
+        (run.hierarchy, run.mesh)
+    } else {
+        let run = super::extended::mesh_extended(input, params)?;
+        (run.hierarchy, run.mesh)
+    };
+    let classes = full_leaf_classes(&h);
+    write_svg(path, svg(&h, &mesh, Some(&classes)))
 }
 
 /// The class of Sec. 5.1 of every full leaf of `h`, classified against the rings of its

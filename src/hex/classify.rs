@@ -5,7 +5,6 @@
 
 use crate::geom::{dist2, Point};
 use crate::hex::lattice::{FxHashMap, Key};
-use crate::hex::refine::is_fin;
 use crate::hex::subdivision::Hierarchy;
 
 /// The classes of Sec. 5.1.
@@ -78,10 +77,20 @@ impl FinStrip {
 }
 
 /// The directions in which the full leaf `key` has fins, as a bit mask.
+///
+/// The edge child towards neighbour n of an unsubdivided hexagon is a fin exactly when n lies
+/// inside the bounding hexagon and is subdivided (`refine::is_fin`: a semi-hexagon owned by a
+/// hexagon inside), so one lookup per direction decides it.
 pub fn fin_mask(h: &Hierarchy, key: Key) -> u8 {
-    (0..6)
-        .filter(|&d| is_fin(h, key.edge_child(d)))
-        .fold(0u8, |m, d| m | (1 << d))
+    debug_assert!(h.is_full_leaf(key), "fin_mask of {key:?}, not a full leaf");
+    let mut mask = 0u8;
+    for d in 0..6 {
+        let n = key.neighbor(d);
+        if n.inside() && h.is_subdivided(n) {
+            mask |= 1 << d;
+        }
+    }
+    mask
 }
 
 /// The mask as one cyclic run of 1 to 5 directions, or `None` (no fins, all six, or several

@@ -359,7 +359,7 @@ pub(crate) fn extend_and_verify(
                     let wide = Region::around(c, REACH + 3);
                     let (mut moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
                     apply_placed(&mut moved, state);
-                    let region = Region::around(c, REACH);
+                    let region = wide.within(REACH);
                     let (mesh, keys) = dual::extract_region_patched(
                         h,
                         Placement::Relocated,
@@ -369,7 +369,7 @@ pub(crate) fn extend_and_verify(
                     );
                     // Only vertices whose every triangle is in this part of the dual may be
                     // placed by `settle_contested`.
-                    (mesh, keys, patch, Some(Region::around(c, REACH - 3)))
+                    (mesh, keys, patch, Some(wide.within(REACH - 3)))
                 }
             };
             stats.checked_triangles += mesh.triangles.len() as u64;
@@ -495,7 +495,13 @@ pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> 
             ]
             .into_iter()
             .filter(|&c| h.is_full_leaf(c))
-            .all(|c| classify(h, r, c).0.is_fixed() && !mc3::is_mc4(h, r, c))
+            .all(|c| {
+                // `mc3::is_mc4` without classifying twice: MOVED_CENTER_4 is a regular
+                // full leaf below which a MOVED_CENTER_3 hexagon lies.
+                let class = classify(h, r, c).0;
+                class.is_fixed()
+                    && !(class == Class::FixedCenterRegular && mc3::mc3_below(h, r, c) != 0)
+            })
         });
         if !fixed_beyond {
             acts.push((key, Why::Other));
@@ -510,7 +516,7 @@ pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> 
             );
         }
     }
-    acts.sort();
+    acts.sort_unstable_by_key(|a| (a.0.packed(), a.1));
     acts.dedup_by_key(|a| a.0);
     acts
 }
@@ -526,27 +532,49 @@ pub(crate) enum Why {
 /// The cells whose extended rules can change when the hexagons `subdivided` are split: the
 /// next level around each (its children and the rings of a point moved into them), its own
 /// level (neighbours that got fins, rings that lost their point), and the level above (hexagons
-/// whose fins border those neighbours). Sorted, without duplicates.
+/// whose fins border those neighbours). Without duplicates, in a deterministic order that
+/// nothing depends on (`extended_actions` sorts what it finds).
 pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
+    // A disc of radius R around a cell lies inside the union of the discs of radius R around
+    // its six neighbours (a step from the cell towards any point of the disc brings it within
+    // R of that neighbour), and the same holds for the discs around central children (radius
+    // 4 around 2c is covered by the discs around the 2n). So a source whose six neighbours
+    // are sources of the same kind adds nothing and is skipped; the rest are unioned with a
+    // hash set, which is cheaper than sorting the overlapping discs.
+    let own: FxHashSet<Key> = subdivided.iter().copied().collect();
+    let parents: FxHashSet<Key> = subdivided
+        .iter()
+        .filter(|s| s.k > 0)
+        .map(|s| Key::new(s.k - 1, s.i.div_euclid(2), s.j.div_euclid(2)))
+        .collect();
+    let interior = |set: &FxHashSet<Key>, c: Key| (0..6).all(|d| set.contains(&c.neighbor(d)));
+    let mut seen: FxHashSet<Key> = FxHashSet::default();
     let mut out = Vec::new();
     let mut disc = |c: Key, radius: i64| {
         for di in -radius..=radius {
             for dj in -radius..=radius {
                 if (di + dj).abs() <= radius {
-                    out.push(Key::new(c.k, c.i + di, c.j + dj));
+                    let key = Key::new(c.k, c.i + di, c.j + dj);
+                    if seen.insert(key) {
+                        out.push(key);
+                    }
                 }
             }
         }
     };
     for &s in subdivided {
-        disc(s.central_child(), 4);
-        disc(s, 3);
-        if s.k > 0 {
-            disc(Key::new(s.k - 1, s.i.div_euclid(2), s.j.div_euclid(2)), 3);
+        if !interior(&own, s) {
+            disc(s.central_child(), 4);
+            disc(s, 3);
         }
     }
-    out.sort();
-    out.dedup();
+    let mut sorted: Vec<Key> = parents.iter().copied().collect();
+    sorted.sort_unstable_by_key(|k| k.packed());
+    for p in sorted {
+        if !interior(&parents, p) {
+            disc(p, 3);
+        }
+    }
     out
 }
 
@@ -623,6 +651,44 @@ fn angle_margin(t: [Point; 3]) -> f64 {
     (lo - min_angle_bound()).min(90.0 - hi)
 }
 
+/// A cheap test that every angle of `t` lies clearly inside [α − slack, 90° + slack] (the
+/// self-check's bounds), without `atan2`: `false` means "not clearly", and the caller then
+/// measures the angles as before, so every decision is the one the measured angles give.
+/// At a corner with edge vectors u, v the angle is atan2(|u×v|, u·v): when u·v > 0 it is
+/// clearly ≥ α − slack if |u×v| ≥ (u·v)·tan(α − slack)·(1 + 1e-12), and below 90°; when
+/// u·v ≤ 0 it is clearly ≤ 90° + slack if −u·v ≤ |u×v|·tan(slack)·(1 − 1e-5). The guard
+/// factors are far wider than the rounding of `atan2` and of the degree conversion (below
+/// 1e-14°), and far narrower than the bounds' own slack.
+#[derive(Debug, Clone, Copy)]
+struct AngleFilter {
+    tan_lo: f64,
+    tan_slack: f64,
+}
+
+impl AngleFilter {
+    fn new() -> AngleFilter {
+        AngleFilter {
+            tan_lo: (min_angle_bound() - SELF_CHECK_SLACK).to_radians().tan() * (1.0 + 1e-12),
+            tan_slack: SELF_CHECK_SLACK.to_radians().tan() * (1.0 - 1e-5),
+        }
+    }
+
+    fn clearly_within(&self, t: &[Point; 3]) -> bool {
+        (0..3).all(|m| {
+            let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
+            let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+            let (vx, vy) = (c[0] - a[0], c[1] - a[1]);
+            let cross = (ux * vy - uy * vx).abs();
+            let dot = ux * vx + uy * vy;
+            if dot > 0.0 {
+                cross >= dot * self.tan_lo
+            } else {
+                cross > 0.0 && -dot <= cross * self.tan_slack
+            }
+        })
+    }
+}
+
 /// Places the centres of contested ring cells (departure from Sec. 5.4, module docs).
 ///
 /// A cell in the moved 1-ring of one OCCUPIED_2 point and the fixed 2-ring of another, three
@@ -680,12 +746,17 @@ fn settle_contested(
         return 0;
     }
     cells.sort_by_key(|c| c.0);
-    let index: FxHashMap<usize, usize> = cells.iter().enumerate().map(|(n, c)| (c.1, n)).collect();
+    // The cell of each mesh vertex (u32::MAX: none), and the triangles around each cell.
+    let mut cell_of = vec![u32::MAX; mesh.vertices.len()];
+    for (n, c) in cells.iter().enumerate() {
+        cell_of[c.1] = n as u32;
+    }
     let mut incident: Vec<Vec<usize>> = vec![Vec::new(); cells.len()];
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for &v in tri {
-            if let Some(&n) = index.get(&(v as usize)) {
-                incident[n].push(t);
+            let n = cell_of[v as usize];
+            if n != u32::MAX {
+                incident[n as usize].push(t);
             }
         }
     }
@@ -729,10 +800,30 @@ fn settle_contested(
         }
         a.pen > b.pen || (a.pen == b.pen && a.worst > b.worst)
     };
+    // A triangle adds to `bad` or `short` in `score` exactly when it breaks an angle bound
+    // by more than the slack or has an edge shorter than `l_min`: a cell none of whose
+    // triangles does so scores (0, 0) and stays, so only the cells of flagged triangles are
+    // scored (flags are refreshed around every move).
+    let filter = AngleFilter::new();
+    let flag = |mesh: &TriMesh, t: usize| -> bool {
+        let c = mesh.corners(t);
+        (0..3).any(|e| crate::geom::dist(c[e], c[(e + 1) % 3]) < l_min)
+            || orient2d(c[0], c[1], c[2]) <= 0.0
+            || (!filter.clearly_within(&c) && angle_margin(c) < -slack)
+    };
+    let mut flagged: FxHashMap<usize, bool> = FxHashMap::default();
+    for tris in &incident {
+        for &t in tris {
+            flagged.entry(t).or_insert_with(|| flag(mesh, t));
+        }
+    }
     let mut moves = 0;
     for _sweep in 0..6 {
         let mut changed = false;
         for (n, &(_, v, centre, radius)) in cells.iter().enumerate() {
+            if !incident[n].iter().any(|t| flagged[t]) {
+                continue;
+            }
             let here = mesh.vertices[v];
             let mut best_score = score(mesh, &incident[n], v, here);
             if best_score.bad == 0 && best_score.short == 0.0 {
@@ -754,6 +845,9 @@ fn settle_contested(
                 mesh.vertices[v] = best;
                 moves += 1;
                 changed = true;
+                for &t in &incident[n] {
+                    flagged.insert(t, flag(mesh, t));
+                }
             }
         }
         if !changed {
@@ -793,9 +887,13 @@ struct BadTriangle {
 fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTriangle> {
     let lo = min_angle_bound() - SELF_CHECK_SLACK;
     let hi = 90.0 + SELF_CHECK_SLACK;
+    let filter = AngleFilter::new();
     let mut bad_tris: Vec<usize> = Vec::new();
     for t in 0..mesh.triangles.len() {
         let c = mesh.corners(t);
+        if filter.clearly_within(&c) {
+            continue;
+        }
         if (0..3).any(|m| {
             let a = angle_deg(c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
             a < lo || a > hi
@@ -826,20 +924,42 @@ fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTrian
 /// Pairs of triangles sharing an edge where the opposite vertex of one lies strictly inside
 /// the circumcircle of the other (exact `incircle`).
 pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
-    let mut edges: Vec<(u32, u32, usize, u32)> = Vec::with_capacity(3 * mesh.triangles.len());
+    // The edges bucketed by their smaller vertex (a counting sort), so that the two triangles
+    // of an edge meet in one short bucket. Either of them may come first: the exact test is
+    // symmetric (the opposite vertex of one lies strictly inside the other's circumcircle
+    // exactly when the reverse holds), and the pairs are only collected.
+    let n = mesh.vertices.len();
+    let mut start = vec![0u32; n + 1];
+    for tri in &mesh.triangles {
+        for e in 0..3 {
+            start[tri[e].min(tri[(e + 1) % 3]) as usize + 1] += 1;
+        }
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    // (larger vertex, triangle, opposite vertex) per edge.
+    let mut slots = vec![(0u32, 0u32, 0u32); 3 * mesh.triangles.len()];
     for (t, tri) in mesh.triangles.iter().enumerate() {
         for e in 0..3 {
             let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            edges.push((a.min(b), a.max(b), t, tri[(e + 2) % 3]));
+            let at = &mut fill[a.min(b) as usize];
+            slots[*at as usize] = (a.max(b), t as u32, tri[(e + 2) % 3]);
+            *at += 1;
         }
     }
-    edges.sort_unstable();
     let mut out = Vec::new();
-    for w in edges.windows(2) {
-        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
-            let [a, b, c] = mesh.corners(w[0].2);
-            if incircle(a, b, c, mesh.vertices[w[1].3 as usize]) > 0.0 {
-                out.push((w[0].2, w[1].2));
+    for v in 0..n {
+        let bucket = &slots[start[v] as usize..start[v + 1] as usize];
+        for (x, &(b, t, _)) in bucket.iter().enumerate() {
+            for &(b2, u, opp) in &bucket[x + 1..] {
+                if b2 == b {
+                    let [p, q, r] = mesh.corners(t as usize);
+                    if incircle(p, q, r, mesh.vertices[opp as usize]) > 0.0 {
+                        out.push((t as usize, u as usize));
+                    }
+                }
             }
         }
     }

@@ -11,6 +11,8 @@
 //! answers whether a lattice triangle of the dual recursion (`dual`) or a leaf may be
 //! affected; everything else is known not to have changed.
 
+use std::rc::Rc;
+
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
 use crate::hex::subdivision::{Cell, Hierarchy};
 
@@ -23,7 +25,11 @@ pub const REACH: i64 = 8;
 /// The cells near a set of changed cells, level by level.
 #[derive(Debug, Clone, Default)]
 pub struct Region {
-    near: FxHashSet<Key>,
+    /// The lattice distance of each cell within the widest reach built to the nearest anchor
+    /// of its level; shared by the narrower views of `within`.
+    dist: Rc<FxHashMap<Key, u8>>,
+    /// The cells within this distance belong to the region.
+    reach: u8,
     /// Two levels below the finest changed cell, plus one: below it nothing changed.
     depth: u8,
 }
@@ -32,6 +38,7 @@ impl Region {
     /// The cells within `reach` of the ancestors, at every level, of `changed`, and of the
     /// cells up to two levels finer (a subdivision creates children).
     pub fn around(changed: &[Key], reach: i64) -> Region {
+        let reach = reach.clamp(0, u8::MAX as i64) as u8;
         let mut anchors: FxHashMap<u8, FxHashSet<(i64, i64)>> = FxHashMap::default();
         let mut depth = 0;
         for &c in changed {
@@ -49,26 +56,54 @@ impl Region {
         }
         let mut levels: Vec<u8> = anchors.keys().copied().collect();
         levels.sort_unstable();
-        let mut near = FxHashSet::default();
+        // The distance of every cell within `reach` of the anchors, level by level, by a
+        // breadth-first search over the six lattice directions: each cell is visited once,
+        // where the discs of anchors a few cells apart (the finer levels, where adjacent
+        // changed cells give anchors 2^s apart) overlapped many times.
+        let mut dist: FxHashMap<Key, u8> = FxHashMap::default();
         for k in levels {
             let mut cells: Vec<(i64, i64)> = anchors[&k].iter().copied().collect();
             cells.sort_unstable();
+            let mut frontier: Vec<Key> = Vec::with_capacity(cells.len());
             for (i, j) in cells {
-                for di in -reach..=reach {
-                    for dj in -reach..=reach {
-                        if (di + dj).abs() <= reach {
-                            near.insert(Key::new(k, i + di, j + dj));
+                let key = Key::new(k, i, j);
+                if dist.insert(key, 0).is_none() {
+                    frontier.push(key);
+                }
+            }
+            for step in 1..=reach {
+                let mut next = Vec::with_capacity(frontier.len() * 2);
+                for c in &frontier {
+                    for d in 0..6 {
+                        let n = c.neighbor(d);
+                        if let std::collections::hash_map::Entry::Vacant(v) = dist.entry(n) {
+                            v.insert(step);
+                            next.push(n);
                         }
                     }
                 }
+                frontier = next;
             }
         }
-        Region { near, depth }
+        Region {
+            dist: Rc::new(dist),
+            reach,
+            depth,
+        }
+    }
+
+    /// The same region with a smaller reach (at most this one's), sharing its distances.
+    pub fn within(&self, reach: i64) -> Region {
+        Region {
+            dist: Rc::clone(&self.dist),
+            reach: reach.clamp(0, self.reach as i64) as u8,
+            depth: self.depth,
+        }
     }
 
     /// True when `key` lies within the region at its own level.
     pub fn contains(&self, key: Key) -> bool {
-        key.k < self.depth && self.near.contains(&key)
+        key.k < self.depth && self.dist.get(&key).is_some_and(|&d| d <= self.reach)
     }
 
     /// True when a lattice triangle of the dual recursion may hold changed triangles: one of
@@ -79,11 +114,11 @@ impl Region {
 
     /// The number of cells held, over all levels (a measure of the work done).
     pub fn len(&self) -> usize {
-        self.near.len()
+        self.dist.values().filter(|&&d| d <= self.reach).count()
     }
 
     pub fn is_empty(&self) -> bool {
-        self.near.is_empty()
+        self.len() == 0
     }
 }
 
@@ -139,6 +174,25 @@ mod tests {
             !r.contains(Key::new(8, 104, -56)),
             "three levels below the changed cell"
         );
+    }
+
+    #[test]
+    fn a_narrower_view_holds_the_cells_of_a_region_built_with_that_reach() {
+        let changed = [Key::new(4, 3, -2), Key::new(4, 4, -2), Key::new(6, 1, 9)];
+        let wide = Region::around(&changed, 7);
+        for reach in [0, 2, 5, 7] {
+            let view = wide.within(reach);
+            let built = Region::around(&changed, reach);
+            assert_eq!(view.len(), built.len(), "reach {reach}");
+            for k in 0..9u8 {
+                for i in -40..40 {
+                    for j in -40..40 {
+                        let key = Key::new(k, i, j);
+                        assert_eq!(view.contains(key), built.contains(key), "{key:?}");
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -116,7 +116,7 @@ impl Hierarchy {
     /// The subdivided hexagons, sorted.
     pub fn subdivided_sorted(&self) -> Vec<Key> {
         let mut v: Vec<Key> = self.subdivided.iter().copied().collect();
-        v.sort();
+        v.sort_unstable_by_key(|k| k.packed());
         v
     }
 
@@ -128,7 +128,7 @@ impl Hierarchy {
     /// The occupied leaves, sorted.
     pub fn occupied_sorted(&self) -> Vec<Key> {
         let mut v: Vec<Key> = self.occupants.keys().copied().collect();
-        v.sort();
+        v.sort_unstable_by_key(|k| k.packed());
         v
     }
 
@@ -379,30 +379,47 @@ impl Hierarchy {
     }
 
     /// Every leaf inside the root: full unsubdivided hexagons and semi-hexagons, sorted.
+    ///
+    /// Every subdivided hexagon is a full hexagon (`check_invariants`), so the leaves are the
+    /// children of subdivided hexagons that are full and unsubdivided, and the semi-hexagons
+    /// they own: one pass over the subdivided set, no descent from the root.
     pub fn leaves(&self) -> Vec<(Key, Cell)> {
-        let mut out = Vec::new();
-        let mut stack = vec![Key::ROOT];
-        // An edge child is a child of two hexagons: without this, deep subtrees were walked
-        // once per path to them, exponentially many in the depth.
-        let mut seen: FxHashSet<Key> = FxHashSet::default();
-        while let Some(key) = stack.pop() {
-            if !self.subdivided.contains(&key) {
-                continue;
+        let mut out = Vec::with_capacity(self.full_leaves + self.subdivided.len());
+        for &key in &self.subdivided {
+            // The central child is full; it is a leaf unless subdivided.
+            let c = key.central_child();
+            if !self.subdivided.contains(&c) {
+                out.push((c, Cell::Full { subdivided: false }));
             }
-            for c in key.children() {
-                match self.cell(c) {
-                    Cell::Full { subdivided: true } if seen.insert(c) => stack.push(c),
-                    Cell::Full { subdivided: false } => out.push((c, self.cell(c))),
-                    Cell::Semi { owner, .. } if owner == key => out.push((c, self.cell(c))),
-                    _ => {}
+            for d in 0..6 {
+                let e = key.edge_child(d);
+                if !e.inside() {
+                    continue;
+                }
+                let n = key.neighbor(d);
+                if !self.is_subdivided_or_outside(n) {
+                    // A semi-hexagon owned by `key`, a fin of `n`.
+                    out.push((
+                        e,
+                        Cell::Semi {
+                            owner: key,
+                            fin_of: n,
+                        },
+                    ));
+                } else if (!n.inside() || key.packed() < n.packed())
+                    && !self.subdivided.contains(&e)
+                {
+                    // A full leaf between two subdivided hexagons, listed by one of them.
+                    out.push((e, Cell::Full { subdivided: false }));
                 }
             }
         }
         if !self.subdivided.contains(&Key::ROOT) {
             out.push((Key::ROOT, self.cell(Key::ROOT)));
         }
-        out.sort_by_key(|e| e.0);
-        out.dedup_by_key(|e| e.0);
+        out.sort_unstable_by_key(|e| e.0.packed());
+        debug_assert!(out.windows(2).all(|w| w[0].0 != w[1].0));
+        debug_assert!(out.iter().all(|&(k, c)| self.cell(k) == c));
         out
     }
 }

@@ -1,0 +1,21 @@
+//! Times the extended hexagonal mesher (`hex`) on one dataset: `cargo run --release --example
+//! hex_time [dataset] [runs]`. A profiling aid; the measured figures live in benches/hex.rs.
+
+use hexmesh::hex::extended::Hex;
+use hexmesh::{Mesher, Params};
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let name = args.next().unwrap_or_else(|| "plane-2k".to_string());
+    let runs: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(3);
+    let input = hexmesh::datasets::by_name(&name).expect("a dataset");
+    for _ in 0..runs {
+        let t = std::time::Instant::now();
+        let run = Hex.mesh(&input, &Params::default()).expect("meshes");
+        println!(
+            "{name}: {} triangles in {:.3} s",
+            run.mesh.triangles.len(),
+            t.elapsed().as_secs_f64()
+        );
+    }
+}

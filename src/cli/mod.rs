@@ -431,6 +431,15 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
             println!("input written to {}", path.display());
         }
     }
+    if summary.failed.len() > 1 {
+        println!("all {} failing cases:", summary.failed.len());
+        for (case, family, path) in &summary.failed {
+            match path {
+                Some(p) => println!("  case {case} ({family}): {}", p.display()),
+                None => println!("  case {case} ({family})"),
+            }
+        }
+    }
     Ok(if summary.failures == 0 {
         ExitCode::SUCCESS
     } else {

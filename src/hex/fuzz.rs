@@ -38,6 +38,9 @@ pub struct FuzzSummary {
     /// Cases, refusals and failures per family, in the order of `FAMILIES`.
     pub families: Vec<FamilyCounts>,
     pub first_failure: Option<FuzzFailure>,
+    /// Every failing case (case number, family, where its input was written), so that a long
+    /// campaign names all it found, not only the first.
+    pub failed: Vec<(u64, &'static str, Option<PathBuf>)>,
 }
 
 /// What a campaign found in one family of point sets.
@@ -128,6 +131,7 @@ pub fn fuzz_campaign_sized(
             })
             .collect(),
         first_failure: None,
+        failed: Vec::new(),
     };
     let m: Box<dyn Mesher> = match mesher {
         "hex-simple" => Box::new(super::HexSimple),
@@ -196,8 +200,14 @@ pub fn fuzz_campaign_sized(
         if let Err(message) = outcome {
             summary.failures += 1;
             summary.families[fam].failures += 1;
+            // Every failing input is written (up to a hundred files).
+            let path = if summary.failed.len() < 100 {
+                write_failure(mesher, seed, case, family, &input).ok()
+            } else {
+                None
+            };
+            summary.failed.push((case, family, path.clone()));
             if summary.first_failure.is_none() {
-                let path = write_failure(mesher, seed, case, family, &input).ok();
                 summary.first_failure = Some(FuzzFailure {
                     case,
                     family,

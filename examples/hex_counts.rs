@@ -47,7 +47,7 @@ fn main() {
         let elapsed = t.elapsed();
         let s = &out.stats;
         println!(
-            "{name}: {} triangles (paper {}) in {:.3} s; splits: rules {} (MC3 {}), self-check {} (rejected triangles at MC3 chains {}), ring flips {}, rounds {}",
+            "{name}: {} triangles (paper {}) in {:.3} s; splits: rules {} (MC3 {}), self-check {} (rejected triangles at MC3 chains {}), ring flips {}, rounds {}, blossoms {}",
             out.mesh.triangles.len(),
             paper(name),
             elapsed.as_secs_f64(),
@@ -56,7 +56,8 @@ fn main() {
             s.verify_splits,
             s.mc3_rejected,
             s.ring_flips,
-            s.rounds
+            s.rounds,
+            s.blossoms
         );
         if let Some(seed) = hexmesh::datasets::default_seed(name) {
             let mut total = 0usize;

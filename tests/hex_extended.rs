@@ -1,5 +1,5 @@
-//! The extended refinement (paper 000 Sec. 5, mesher `hex`, not registered yet): on the inputs
-//! it finishes quickly, the Sec. 6 promises hold: angles in [43.8979°, 90°], radius ratio at
+//! The extended refinement (paper 000 Sec. 5, mesher `hex`): on the inputs it finishes
+//! quickly, the Sec. 6 promises hold: angles in [43.8979°, 90°], radius ratio at
 //! most 1.20787, no exact Delaunay violation, shortest edge at least √7/(12√3)·d_min.
 
 use hexmesh::geom::{dist, Point};
@@ -144,6 +144,33 @@ fn contested_ring_cells_placed_by_local_search_meet_every_bound() {
         let out = mesh_extended(&input, &Params::default()).expect("meshes");
         assert_eq!(out.stats.verify_splits, 0, "{name}: {:?}", out.stats);
         assert!(out.stats.settled > 0, "{name}: {:?}", out.stats);
+        assert_extended_bounds(&input);
+    }
+}
+
+/// Two OCCUPIED_2 points three hexagons apart whose shared ring cells no single move of
+/// `settle_contested` could place: the self-check subdivided a ring cell, below the r_min of
+/// Sec. 6.3, and an edge fell to 0.124·d_min (case 22172, translated by 1e7) and 0.120·d_min
+/// (case 70276, scaled by 1e-6; the point lies near the border of two corners' regions). The
+/// finer search of `polish_rings` and the second-corner shift of `switch_corner` now repair
+/// them in place: no self-check split, every bound.
+#[test]
+fn rings_of_points_three_apart_are_repaired_without_going_below_r_min() {
+    for (name, polished) in [
+        (
+            "hex-short-edge-below-r-min-translated-fuzz-seed20261123-case22172.node",
+            true,
+        ),
+        (
+            "hex-second-corner-scaled-fuzz-seed20261123-case70276.node",
+            false,
+        ),
+    ] {
+        let input = fixture(name);
+        let out = mesh_extended(&input, &Params::default()).expect("meshes");
+        assert_eq!(out.stats.verify_splits, 0, "{name}: {:?}", out.stats);
+        assert!(out.stats.corner_switches > 0, "{name}: {:?}", out.stats);
+        assert_eq!(out.stats.polished > 0, polished, "{name}: {:?}", out.stats);
         assert_extended_bounds(&input);
     }
 }

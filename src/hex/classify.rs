@@ -83,6 +83,12 @@ impl FinStrip {
 /// hexagon inside), so one lookup per direction decides it.
 pub fn fin_mask(h: &Hierarchy, key: Key) -> u8 {
     debug_assert!(h.is_full_leaf(key), "fin_mask of {key:?}, not a full leaf");
+    subdivided_neighbours(h, key)
+}
+
+/// The directions in which the neighbour of `key` lies inside the bounding hexagon and is
+/// subdivided, as a bit mask: the fins of `key` when it is a full leaf.
+pub fn subdivided_neighbours(h: &Hierarchy, key: Key) -> u8 {
     let mut mask = 0u8;
     for d in 0..6 {
         let n = key.neighbor(d);
@@ -128,6 +134,8 @@ pub struct Rings {
     pub contested: FxHashMap<Key, Role>,
     pub occupied: FxHashMap<Key, Class>,
     pub conflicts: Vec<Key>,
+    /// The keys each cell's claims put into `conflicts` (so that `update` can redo a cell).
+    pub conflict_at: FxHashMap<Key, Vec<Key>>,
 }
 
 /// The cells at lattice distance exactly `radius` (1 or 2) from `key`, inside the domain.
@@ -159,108 +167,222 @@ pub fn occupied_class(h: &Hierarchy, key: Key, p: Point) -> Class {
 /// Half the vector from the centre of an OCCUPIED_2 hexagon to its corner nearest the point
 /// (Sec. 5.4, "Centers of MOVED_CENTER_IN_RING-hexagons"); ties go to the lower corner index.
 pub fn ring_shift(h: &Hierarchy, key: Key, p: Point) -> Point {
+    ring_shift_ranked(h, key, p, 0)
+}
+
+/// Half the vector from the centre of an OCCUPIED_2 hexagon to its corner of rank `rank` in
+/// distance from the point (0: the nearest, as Sec. 5.4; 1: the second nearest, the
+/// alternative `extended` tries for a point near the border of two corners' regions); ties
+/// go to the lower corner index.
+pub fn ring_shift_ranked(h: &Hierarchy, key: Key, p: Point, rank: usize) -> Point {
     let c = h.lattice.center(key);
     let corners = h.lattice.corners(key);
-    let mut best = 0;
-    for m in 1..6 {
-        if dist2(corners[m], p) < dist2(corners[best], p) {
-            best = m;
-        }
-    }
+    let mut order: Vec<usize> = (0..6).collect();
+    order.sort_by(|&a, &b| {
+        dist2(corners[a], p)
+            .total_cmp(&dist2(corners[b], p))
+            .then(a.cmp(&b))
+    });
+    let best = order[rank.min(5)];
     [
         (corners[best][0] - c[0]) / 2.0,
         (corners[best][1] - c[1]) / 2.0,
     ]
 }
 
+/// Splitting a pair gives hexagons of radius r/2, and a moved ring cell can lie (3√3/4)·(r/2)
+/// from an OCCUPIED_2 point on its hexagon's edge: that keeps the shortest edge
+/// l_min = √7/(12√3)·d of Sec. 6.3 only for points at most (3√3/4)/(√7/(12√3))/2·r ≈ 5.10·r
+/// apart. Farther apart the pair is not split and `extended::settle_contested` places the
+/// cells its rings share.
+fn splittable(h: &Hierarchy, key: Key, other: Key) -> bool {
+    let reach = 3.0 * 3f64.sqrt() / 4.0 / (7f64.sqrt() / (12.0 * 3f64.sqrt())) / 2.0;
+    let p = h.points[h.occupants(key)[0] as usize];
+    let q = h.points[h.occupants(other)[0] as usize];
+    dist2(p, q).sqrt() <= reach * h.lattice.radius(key.k)
+}
+
+/// The role the occupied hexagon `key` (of class `class`) gives the cells of its 1-ring.
+fn first_role(h: &Hierarchy, key: Key, class: Class) -> Role {
+    match class {
+        Class::Occupied1 => Role::Fixed,
+        _ => Role::Moved {
+            owner: key,
+            shift: ring_shift(h, key, h.points[h.occupants(key)[0] as usize]),
+        },
+    }
+}
+
+/// The claim of the occupied hexagon `key` on `cell`, one of its ring cells: the rules of
+/// Sec. 5.1 in the order of `rings`. Each cell's roles, contests and conflicts depend only on
+/// the claims on that cell, in the order of the claimants' keys.
+fn claim(h: &Hierarchy, r: &mut Rings, key: Key, cell: Key, role: Role) {
+    if r.occupied.contains_key(&cell) {
+        if splittable(h, key, cell) {
+            r.conflict_at.entry(cell).or_default().extend([key, cell]);
+        }
+        return;
+    }
+    match (r.roles.get(&cell).copied(), role) {
+        (None, _) => {
+            r.roles.insert(cell, role);
+        }
+        // FIXED_CENTER_IN_RING comes first in the classification of Sec. 5.1: a cell in the
+        // fixed ring of one point and the moved 1-ring of another keeps its centre. Sec. 6.3
+        // lets OCCUPIED_2 hexagons three apart share such cells; subdividing them instead
+        // would go one level below its r_min.
+        (Some(old), Role::Fixed) => {
+            if let Role::Moved { .. } = old {
+                r.contested.entry(cell).or_insert(old);
+            }
+            r.roles.insert(cell, Role::Fixed);
+        }
+        (Some(Role::Fixed), Role::Moved { .. }) => {
+            r.contested.entry(cell).or_insert(role);
+        }
+        (Some(Role::Moved { owner, .. }), Role::Moved { .. }) => {
+            // Two moved 1-rings overlap only when the occupied hexagons are two apart, closer
+            // than Sec. 6.3 assumes.
+            if splittable(h, key, owner) {
+                r.conflict_at.entry(cell).or_default().extend([key, owner]);
+            } else {
+                r.contested.entry(cell).or_insert(role);
+            }
+        }
+    }
+}
+
+impl Rings {
+    /// The conflict list from the conflicts recorded per cell.
+    fn collect_conflicts(&mut self) {
+        let mut c: Vec<Key> = self.conflict_at.values().flatten().copied().collect();
+        c.sort_unstable_by_key(|k| k.packed());
+        c.dedup();
+        self.conflicts = c;
+    }
+
+    /// Brings rings built for the occupied hexagons `old` (sorted) up to date with `h`, whose
+    /// occupied hexagons are `new` (sorted): only the cells within two of a hexagon that
+    /// stopped or started being occupied are claimed again, by every occupied hexagon within
+    /// two of them in key order, which gives each of them what `rings` gives it.
+    pub fn update(&mut self, h: &Hierarchy, old: &[Key], new: &[Key]) {
+        let in_new = |k: &Key| {
+            new.binary_search_by_key(&k.packed(), |x| x.packed())
+                .is_ok()
+        };
+        let in_old = |k: &Key| {
+            old.binary_search_by_key(&k.packed(), |x| x.packed())
+                .is_ok()
+        };
+        let removed: Vec<Key> = old.iter().copied().filter(|k| !in_new(k)).collect();
+        let added: Vec<Key> = new.iter().copied().filter(|k| !in_old(k)).collect();
+        if removed.is_empty() && added.is_empty() {
+            return;
+        }
+        for k in &removed {
+            self.occupied.remove(k);
+        }
+        for &k in &added {
+            let p = h.points[h.occupants(k)[0] as usize];
+            self.occupied.insert(k, occupied_class(h, k, p));
+        }
+        let mut cells: Vec<Key> = Vec::new();
+        for &k in removed.iter().chain(&added) {
+            cells.push(k);
+            for di in -2i64..=2 {
+                for dj in -2i64..=2 {
+                    if (di + dj).abs() <= 2 {
+                        cells.push(Key::new(k.k, k.i + di, k.j + dj));
+                    }
+                }
+            }
+        }
+        cells.sort_unstable_by_key(|k| k.packed());
+        cells.dedup();
+        for &cell in &cells {
+            self.roles.remove(&cell);
+            self.contested.remove(&cell);
+            self.conflict_at.remove(&cell);
+        }
+        for &cell in &cells {
+            if !cell.inside() {
+                continue;
+            }
+            // The occupied hexagons whose 1-ring or 2-ring holds `cell`, in key order.
+            let mut claimants: Vec<(Key, i64)> = Vec::new();
+            for di in -2i64..=2 {
+                for dj in -2i64..=2 {
+                    let d = di.abs().max(dj.abs()).max((di + dj).abs());
+                    if d == 0 || d > 2 {
+                        continue;
+                    }
+                    let o = Key::new(cell.k, cell.i - di, cell.j - dj);
+                    if self.occupied.contains_key(&o) {
+                        claimants.push((o, d));
+                    }
+                }
+            }
+            claimants.sort_unstable_by_key(|c| c.0.packed());
+            for (o, d) in claimants {
+                let class = self.occupied[&o];
+                let role = match (d, class) {
+                    (1, _) => first_role(h, o, class),
+                    (2, Class::Occupied2) => Role::Fixed,
+                    _ => continue,
+                };
+                claim(h, self, o, cell, role);
+            }
+        }
+        self.collect_conflicts();
+    }
+}
+
 /// Builds the rings of every occupied hexagon (which must be full leaves holding one point).
 pub fn rings(h: &Hierarchy) -> Rings {
-    let mut r = Rings::default();
     let occupied = h.occupied_sorted();
+    // Up to 18 ring cells per point: sized once, the table is not rebuilt while it fills.
+    let mut r = Rings {
+        roles: FxHashMap::with_capacity_and_hasher(18 * occupied.len(), Default::default()),
+        occupied: FxHashMap::with_capacity_and_hasher(occupied.len(), Default::default()),
+        ..Rings::default()
+    };
     for &key in &occupied {
         let p = h.points[h.occupants(key)[0] as usize];
         r.occupied.insert(key, occupied_class(h, key, p));
     }
-    let conflict = |r: &mut Rings, a: Key, b: Key| {
-        r.conflicts.push(a);
-        r.conflicts.push(b);
-    };
     for &key in &occupied {
-        let p = h.points[h.occupants(key)[0] as usize];
         let class = r.occupied[&key];
-        let mut wanted: Vec<(Key, Role)> = Vec::new();
-        let first = match class {
-            Class::Occupied1 => Role::Fixed,
-            _ => Role::Moved {
-                owner: key,
-                shift: ring_shift(h, key, p),
-            },
-        };
-        wanted.extend(ring(key, 1).into_iter().map(|c| (c, first)));
-        if class == Class::Occupied2 {
-            wanted.extend(ring(key, 2).into_iter().map(|c| (c, Role::Fixed)));
+        let first = first_role(h, key, class);
+        for cell in ring(key, 1) {
+            claim(h, &mut r, key, cell, first);
         }
-        // Splitting a pair gives hexagons of radius r/2, and a moved ring cell can lie
-        // (3√3/4)·(r/2) from an OCCUPIED_2 point on its hexagon's edge: that keeps the
-        // shortest edge l_min = √7/(12√3)·d of Sec. 6.3 only for points at most
-        // (3√3/4)/(√7/(12√3))/2·r ≈ 5.10·r apart. Farther apart the pair is not split and
-        // `extended::settle_contested` places the cells its rings share.
-        let reach = 3.0 * 3f64.sqrt() / 4.0 / (7f64.sqrt() / (12.0 * 3f64.sqrt())) / 2.0;
-        let splittable = |other: Key| {
-            let q = h.points[h.occupants(other)[0] as usize];
-            dist2(p, q).sqrt() <= reach * h.lattice.radius(key.k)
-        };
-        for (cell, role) in wanted {
-            if r.occupied.contains_key(&cell) {
-                if splittable(cell) {
-                    conflict(&mut r, key, cell);
-                }
-                continue;
-            }
-            match (r.roles.get(&cell).copied(), role) {
-                (None, _) => {
-                    r.roles.insert(cell, role);
-                }
-                // FIXED_CENTER_IN_RING comes first in the classification of Sec. 5.1: a cell
-                // in the fixed ring of one point and the moved 1-ring of another keeps its
-                // centre. Sec. 6.3 lets OCCUPIED_2 hexagons three apart share such cells;
-                // subdividing them instead would go one level below its r_min.
-                (Some(old), Role::Fixed) => {
-                    if let Role::Moved { .. } = old {
-                        r.contested.entry(cell).or_insert(old);
-                    }
-                    r.roles.insert(cell, Role::Fixed);
-                }
-                (Some(Role::Fixed), Role::Moved { .. }) => {
-                    r.contested.entry(cell).or_insert(role);
-                }
-                (Some(Role::Moved { owner, .. }), Role::Moved { .. }) => {
-                    // Two moved 1-rings overlap only when the occupied hexagons are two apart,
-                    // closer than Sec. 6.3 assumes.
-                    if splittable(owner) {
-                        conflict(&mut r, key, owner);
-                    } else {
-                        r.contested.entry(cell).or_insert(role);
-                    }
-                }
+        if class == Class::Occupied2 {
+            for cell in ring(key, 2) {
+                claim(h, &mut r, key, cell, Role::Fixed);
             }
         }
     }
-    r.conflicts.sort();
-    r.conflicts.dedup();
+    r.collect_conflicts();
     r
+}
+
+/// The class of a full leaf with the (non-empty) fin mask `mask`: MOVED_CENTER_1/2/3 for one
+/// run of one to three fins, else SUBDIVIDE (Sec. 5.1).
+pub fn fin_class(mask: u8) -> (Class, Option<FinStrip>) {
+    debug_assert!(mask != 0);
+    match fin_strip(mask) {
+        Some(s) if s.len == 1 => (Class::MovedCenter1, Some(s)),
+        Some(s) if s.len == 2 => (Class::MovedCenter2, Some(s)),
+        Some(s) if s.len == 3 => (Class::MovedCenter3, Some(s)),
+        _ => (Class::Subdivide, None),
+    }
 }
 
 /// The class of a full leaf.
 pub fn classify(h: &Hierarchy, rings: &Rings, key: Key) -> (Class, Option<FinStrip>) {
     let mask = fin_mask(h, key);
     if mask != 0 {
-        return match fin_strip(mask) {
-            Some(s) if s.len == 1 => (Class::MovedCenter1, Some(s)),
-            Some(s) if s.len == 2 => (Class::MovedCenter2, Some(s)),
-            Some(s) if s.len == 3 => (Class::MovedCenter3, Some(s)),
-            _ => (Class::Subdivide, None),
-        };
+        return fin_class(mask);
     }
     if let Some(&c) = rings.occupied.get(&key) {
         return (c, None);

@@ -156,11 +156,16 @@ fn midpoint(a: Key, b: Key) -> Key {
     Key::new(a.k + 1, a.i + b.i, a.j + b.j)
 }
 
+/// The index entry of a dropped centre that has no vertex yet.
+const DROPPED: u32 = u32::MAX;
+
 struct Builder<'a> {
     h: &'a Hierarchy,
     moved: &'a FxHashMap<Key, Point>,
     /// Centres whose triangles the patch replaces.
     dropped: &'a FxHashSet<Key>,
+    /// Every dropped centre is marked `DROPPED` in `index` (none is a vertex yet).
+    marked: bool,
     /// Canonical key of each vertex.
     keys: Vec<Key>,
     /// Dual vertex of each canonical centre.
@@ -197,10 +202,20 @@ impl<'a> Builder<'a> {
         for (&key, &v) in &index {
             keys[v as usize] = key;
         }
+        // Dropped centres are marked in the index: the lookup that finds a vertex also tells
+        // a triangle of a dropped star (`emit`); the patch gives them vertices (`vertex`).
+        let mut marked = true;
+        for &key in dropped {
+            if *index.entry(key).or_insert(DROPPED) != DROPPED {
+                // A dropped centre that already is a vertex (an input point): test the set.
+                marked = false;
+            }
+        }
         Builder {
             h,
             moved,
             dropped,
+            marked,
             keys,
             index,
             vertices,
@@ -210,10 +225,29 @@ impl<'a> Builder<'a> {
     }
 
     fn emit(&mut self, tri: [Key; 3]) {
-        if !self.dropped.is_empty() && tri.iter().any(|c| self.dropped.contains(&c.canonical())) {
+        if !tri.iter().all(|c| c.inside()) {
             return;
         }
-        self.emit_patch(tri);
+        let keys = tri.map(|c| c.canonical());
+        let found = keys.map(|k| self.index.get(&k).copied());
+        if !self.dropped.is_empty() {
+            let dropped = if self.marked {
+                found.contains(&Some(DROPPED))
+            } else {
+                keys.iter().any(|k| self.dropped.contains(k))
+            };
+            if dropped {
+                return;
+            }
+        }
+        let t = [0, 1, 2].map(|m| match found[m] {
+            Some(v) => {
+                self.used[v as usize] = true;
+                v
+            }
+            None => self.new_vertex(keys[m]),
+        });
+        self.triangles.push(t);
     }
 
     fn emit_patch(&mut self, tri: [Key; 3]) {
@@ -225,10 +259,17 @@ impl<'a> Builder<'a> {
 
     fn vertex(&mut self, cell: Key) -> u32 {
         let key = cell.canonical();
-        if let Some(&v) = self.index.get(&key) {
-            self.used[v as usize] = true;
-            return v;
+        match self.index.get(&key) {
+            Some(&v) if v != DROPPED => {
+                self.used[v as usize] = true;
+                v
+            }
+            _ => self.new_vertex(key),
         }
+    }
+
+    /// A new vertex for the canonical key `key` (not in the index, or a dropped centre).
+    fn new_vertex(&mut self, key: Key) -> u32 {
         let v = self.vertices.len() as u32;
         let p = match self.moved.get(&key) {
             Some(&p) => p,

@@ -283,8 +283,174 @@ pub type FxBuild = BuildHasherDefault<FxHasher>;
 pub type FxHashMap<K, V> = std::collections::HashMap<K, V, FxBuild>;
 pub type FxHashSet<K> = std::collections::HashSet<K, FxBuild>;
 
+/// A set of keys kept as blocks of 8 × 8 cells of one level, one bit each: neighbouring cells
+/// share a block, so the table is several times smaller than a set of keys and the lookups
+/// of a neighbourhood stay in cache (the hierarchy asks for the subdivided state of every
+/// cell near the one it looks at).
+#[derive(Debug, Clone, Default)]
+pub struct KeySet {
+    blocks: FxHashMap<Key, u64>,
+    len: usize,
+}
+
+impl KeySet {
+    pub fn with_capacity(keys: usize) -> KeySet {
+        KeySet {
+            blocks: FxHashMap::with_capacity_and_hasher(keys / 8 + 16, Default::default()),
+            len: 0,
+        }
+    }
+
+    /// The block of `key` and its bit there (`>>` and `&` floor negative coordinates).
+    fn slot(key: Key) -> (Key, u64) {
+        let block = Key::new(key.k, key.i >> 3, key.j >> 3);
+        (block, 1u64 << (((key.i & 7) << 3) | (key.j & 7)))
+    }
+
+    pub fn contains(&self, key: &Key) -> bool {
+        let (block, bit) = KeySet::slot(*key);
+        self.blocks.get(&block).is_some_and(|&w| w & bit != 0)
+    }
+
+    /// Adds `key`; true when it was not there.
+    pub fn insert(&mut self, key: Key) -> bool {
+        let (block, bit) = KeySet::slot(key);
+        let w = self.blocks.entry(block).or_insert(0);
+        let new = *w & bit == 0;
+        *w |= bit;
+        self.len += new as usize;
+        new
+    }
+
+    /// Removes `key`; true when it was there.
+    pub fn remove(&mut self, key: &Key) -> bool {
+        let (block, bit) = KeySet::slot(*key);
+        let Some(w) = self.blocks.get_mut(&block) else {
+            return false;
+        };
+        let had = *w & bit != 0;
+        *w &= !bit;
+        if *w == 0 {
+            self.blocks.remove(&block);
+        }
+        self.len -= had as usize;
+        had
+    }
+
+    /// Adds every cell within lattice distance `radius` of `c` (at its level), one table
+    /// lookup per block the disc meets rather than one per cell.
+    pub fn insert_disc(&mut self, c: Key, radius: i64) {
+        // (block i, block j, bits), for the few blocks a disc meets.
+        let mut acc: Vec<(i64, i64, u64)> = Vec::with_capacity(8);
+        for di in -radius..=radius {
+            let i = c.i + di;
+            let lo = c.j + (-radius).max(-radius - di);
+            let hi = c.j + radius.min(radius - di);
+            let mut j = lo;
+            while j <= hi {
+                let (bi, bj) = (i >> 3, j >> 3);
+                // The cells j..=end of this row that lie in block column bj.
+                let end = hi.min((bj << 3) + 7);
+                let row = (i & 7) << 3;
+                let (a, b) = (j & 7, end & 7);
+                let bits = ((u64::MAX >> (63 - (b - a))) << a) << row;
+                match acc.iter_mut().find(|e| e.0 == bi && e.1 == bj) {
+                    Some(e) => e.2 |= bits,
+                    None => acc.push((bi, bj, bits)),
+                }
+                j = end + 1;
+            }
+        }
+        for (bi, bj, bits) in acc {
+            let w = self.blocks.entry(Key::new(c.k, bi, bj)).or_insert(0);
+            self.len += (bits & !*w).count_ones() as usize;
+            *w |= bits;
+        }
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// The keys, in no particular order.
+    pub fn iter(&self) -> impl Iterator<Item = Key> + '_ {
+        self.blocks.iter().flat_map(|(b, &w)| {
+            (0..64)
+                .filter(move |n| w & (1u64 << n) != 0)
+                .map(move |n| Key::new(b.k, (b.i << 3) | (n >> 3), (b.j << 3) | (n & 7)))
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_key_set_holds_exactly_what_was_inserted_and_not_removed() {
+        let mut set = KeySet::default();
+        let mut reference = std::collections::BTreeSet::new();
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for step in 0..4000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let key = Key::new(
+                (x % 4) as u8,
+                (x >> 8) as i64 % 40 - 20,
+                (x >> 24) as i64 % 40 - 20,
+            );
+            if step % 3 == 2 {
+                assert_eq!(set.remove(&key), reference.remove(&key), "{key:?}");
+            } else {
+                assert_eq!(set.insert(key), reference.insert(key), "{key:?}");
+            }
+            assert_eq!(set.len(), reference.len());
+        }
+        for k in 0..4u8 {
+            for i in -21..21 {
+                for j in -21..21 {
+                    let key = Key::new(k, i, j);
+                    assert_eq!(set.contains(&key), reference.contains(&key), "{key:?}");
+                }
+            }
+        }
+        let mut listed: Vec<Key> = set.iter().collect();
+        listed.sort();
+        assert_eq!(listed, reference.into_iter().collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_disc_inserted_at_once_is_the_cells_inserted_one_by_one() {
+        for (c, radius) in [
+            (Key::new(3, 0, 0), 0),
+            (Key::new(3, 5, -2), 1),
+            (Key::new(7, -13, 22), 4),
+            (Key::new(9, 100, -9), 11),
+        ] {
+            let mut at_once = KeySet::default();
+            at_once.insert(Key::new(c.k, c.i + radius, c.j));
+            at_once.insert_disc(c, radius);
+            let mut one_by_one = KeySet::default();
+            one_by_one.insert(Key::new(c.k, c.i + radius, c.j));
+            for di in -radius..=radius {
+                for dj in -radius..=radius {
+                    if (di + dj).abs() <= radius {
+                        one_by_one.insert(Key::new(c.k, c.i + di, c.j + dj));
+                    }
+                }
+            }
+            let mut a: Vec<Key> = at_once.iter().collect();
+            let mut b: Vec<Key> = one_by_one.iter().collect();
+            a.sort();
+            b.sort();
+            assert_eq!(a, b, "disc {c:?} radius {radius}");
+            assert_eq!(at_once.len(), one_by_one.len());
+        }
+    }
+
     #[test]
     fn packed_keys_sort_like_keys() {
         let mut keys = Vec::new();

@@ -7,11 +7,13 @@
 //! - `lattice`: integer keys of hexagons, exact positions, the bounding-hexagon test.
 //! - `subdivision`: split, join, balancing, point location (Sec. 3).
 //! - `refine`: refinement rules 1–5 on a work list (Sec. 4.1).
+//! - `blossom`: local coarsening into blossoms (Sec. 5.3).
 //! - `dual`: the dual triangle mesh (Sec. 4.2).
 //! - `pslg`: planar straight-line graphs: segments, holes, the domain (Sec. 7).
 //! - `picture`: SVG of the hexagons with the dual over them (Figs. 3, 4, 7).
 //! - `fuzz`: a seeded campaign that checks the promised bounds on random point sets.
 
+pub mod blossom;
 pub mod classify;
 pub mod dual;
 pub mod extended;

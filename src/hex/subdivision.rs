@@ -18,7 +18,7 @@
 use std::time::Instant;
 
 use crate::geom::{orient2d, Point};
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key, Lattice, Parents, MAX_LEVEL};
+use crate::hex::lattice::{FxHashMap, Key, KeySet, Lattice, Parents, MAX_LEVEL};
 use crate::mesher::Budget;
 
 /// What a lattice cell is in the current subdivision.
@@ -49,7 +49,7 @@ pub enum Stop {
 pub struct Hierarchy {
     pub lattice: Lattice,
     pub points: Vec<Point>,
-    subdivided: FxHashSet<Key>,
+    subdivided: KeySet,
     /// Input points per leaf (full unsubdivided hexagon or semi-hexagon); only occupied leaves.
     occupants: FxHashMap<Key, Vec<u32>>,
     /// Cells whose rules must be re-examined.
@@ -92,7 +92,7 @@ impl Hierarchy {
             deepest: 0,
             lattice,
             points,
-            subdivided: FxHashSet::with_capacity_and_hasher(expected, Default::default()),
+            subdivided: KeySet::with_capacity(expected),
             occupants,
             work: Vec::new(),
             log: Vec::new(),
@@ -115,7 +115,7 @@ impl Hierarchy {
 
     /// The subdivided hexagons, sorted.
     pub fn subdivided_sorted(&self) -> Vec<Key> {
-        let mut v: Vec<Key> = self.subdivided.iter().copied().collect();
+        let mut v: Vec<Key> = self.subdivided.iter().collect();
         v.sort_unstable_by_key(|k| k.packed());
         v
     }
@@ -249,6 +249,22 @@ impl Hierarchy {
         Ok(())
     }
 
+    /// Makes the subdivided hexagon `top` and its six subdivided neighbours leaves again: the
+    /// local coarsening into a blossom of Sec. 5.3 (`blossom::can_form` has checked that the
+    /// 37 cells of the next level around `top` are unoccupied full leaves and that nothing
+    /// finer lies next to them, so balancing (Sec. 3.3) still holds). The 37 full leaves
+    /// become 7.
+    pub(crate) fn merge_blossom(&mut self, top: Key) {
+        debug_assert!(self.is_subdivided(top));
+        self.subdivided.remove(&top);
+        for d in 0..6 {
+            let n = top.neighbor(d);
+            debug_assert!(self.is_subdivided(n));
+            self.subdivided.remove(&n);
+        }
+        self.full_leaves -= 30;
+    }
+
     /// Queues the cells whose rules may have changed: the seven children, the ring of cells of
     /// the next level around them, and the neighbours of `key`.
     fn schedule_around(&mut self, key: Key) {
@@ -378,6 +394,35 @@ impl Hierarchy {
         key
     }
 
+    /// The full unsubdivided hexagons inside the root, in no particular order (the order of
+    /// the subdivided set): for callers whose result does not depend on it.
+    pub fn full_leaves_unordered(&self) -> Vec<Key> {
+        let mut out = Vec::with_capacity(self.full_leaves + 1);
+        for key in self.subdivided.iter() {
+            let c = key.central_child();
+            if !self.subdivided.contains(&c) {
+                out.push(c);
+            }
+            for d in 0..6 {
+                let e = key.edge_child(d);
+                if !e.inside() {
+                    continue;
+                }
+                let n = key.neighbor(d);
+                if self.is_subdivided_or_outside(n)
+                    && (!n.inside() || key.packed() < n.packed())
+                    && !self.subdivided.contains(&e)
+                {
+                    out.push(e);
+                }
+            }
+        }
+        if !self.subdivided.contains(&Key::ROOT) {
+            out.push(Key::ROOT);
+        }
+        out
+    }
+
     /// Every leaf inside the root: full unsubdivided hexagons and semi-hexagons, sorted.
     ///
     /// Every subdivided hexagon is a full hexagon (`check_invariants`), so the leaves are the
@@ -385,7 +430,7 @@ impl Hierarchy {
     /// they own: one pass over the subdivided set, no descent from the root.
     pub fn leaves(&self) -> Vec<(Key, Cell)> {
         let mut out = Vec::with_capacity(self.full_leaves + self.subdivided.len());
-        for &key in &self.subdivided {
+        for key in self.subdivided.iter() {
             // The central child is full; it is a leaf unless subdivided.
             let c = key.central_child();
             if !self.subdivided.contains(&c) {

@@ -1,0 +1,89 @@
+//! Local coarsening into blossoms, paper 000 Sec. 5.3: "all of the hexagons in the 4-ring of
+//! h_i must be of type FIXED_CENTER_REGULAR. By this operation 37 hexagons are replaced by 7.
+//! In the dual mesh a blossom is represented by 60 triangles instead of 96."
+//!
+//! In the lattice of DESIGN.md a blossom is one subdivided hexagon T of level k and its six
+//! subdivided neighbours N_0 … N_5 made leaves again. Before, the level-(k+1) cells within
+//! lattice distance 3 of c = T's central child are 37 full leaves: the central children of T
+//! and N_d (distance 0 and 2), the cells between T and N_d (1), between N_d and N_{d+1} (2),
+//! and the 18 between N_d and the twelve hexagons R of T's 2-ring (3). After, T and the N_d
+//! are the 7 full leaves of level k there; the cells between N_d and R are halves of R, three
+//! fins of each N_d, so every N_d is MOVED_CENTER_3 with top neighbour T, and T is
+//! MOVED_CENTER_4 of a ring of six: the blossom that `mc3` builds (60 triangles, T unmoved).
+//!
+//! The condition, read in these terms ("h_i" is c; its 4-ring is every cell within distance
+//! 4 of it): the 61 level-(k+1) cells within distance 4 of c are full leaves inside the
+//! bounding hexagon, off its boundary, FIXED_CENTER_REGULAR (no fin, no point, no ring role)
+//! and not MOVED_CENTER_4. The 37 inner ones are the cells replaced; the 24 at distance 4 are
+//! the central children of the R and the cells between two R: the full hexagons next to the
+//! new fins, which Sec. 5.2 wants FIXED_CENTER_x, with no finer hexagon next to a fin
+//! (Sec. 3.3). The split counters of Sec. 3.2 allow the operation on such leaves: the 7
+//! central children merge up (their counter `Key::split_counter` is at least 1) and the 30
+//! other cells are joined cells (counter 0), which may be broken.
+//!
+//! Departure from the paper: Sec. 5.3 examines "each hexagon h_i with a split-counter of 0";
+//! a central child c never has counter 0, so the condition is read as above, on every
+//! subdivided T. Candidates are tried once each, in key order, on the state left by the
+//! blossoms already formed, so that blossoms never overlap and the result is deterministic.
+
+use crate::hex::classify::{classify, Class, Rings};
+use crate::hex::lattice::Key;
+use crate::hex::mc3;
+use crate::hex::subdivision::Hierarchy;
+
+/// The cells within lattice distance `radius` of `c`, at its level.
+fn disc(c: Key, radius: i64) -> impl Iterator<Item = Key> {
+    (-radius..=radius).flat_map(move |di| {
+        (-radius..=radius)
+            .filter(move |dj| (di + dj).abs() <= radius)
+            .map(move |dj| Key::new(c.k, c.i + di, c.j + dj))
+    })
+}
+
+/// True when the subdivided hexagon `top` and its six neighbours can be made a blossom.
+pub fn can_form(h: &Hierarchy, r: &Rings, top: Key) -> bool {
+    if !h.is_subdivided(top) || (0..6).any(|d| !h.is_subdivided(top.neighbor(d))) {
+        return false;
+    }
+    disc(top.central_child(), 4).all(|x| {
+        x.inside()
+            && !x.on_boundary()
+            && h.is_full_leaf(x)
+            && classify(h, r, x).0 == Class::FixedCenterRegular
+            && !mc3::is_mc4(h, r, x)
+    })
+}
+
+/// Forms every blossom the condition allows among the subdivided hexagons `tops` (tried in
+/// key order), on `h` as it stands with the rings `r`, and returns the hexagons made leaves
+/// (seven per blossom).
+pub fn coarsen(h: &mut Hierarchy, r: &Rings, tops: &[Key]) -> Vec<Key> {
+    let mut tops = tops.to_vec();
+    tops.sort_unstable_by_key(|k| k.packed());
+    tops.dedup();
+    let mut merged = Vec::new();
+    for top in tops {
+        if can_form(h, r, top) {
+            let seven: Vec<Key> = std::iter::once(top)
+                .chain((0..6).map(|d| top.neighbor(d)))
+                .collect();
+            h.merge_blossom(top);
+            merged.extend(seven);
+        }
+    }
+    merged
+}
+
+/// The subdivided hexagons whose central child is a full leaf of class FIXED_CENTER_REGULAR:
+/// the only possible blossom tops, found from the leaves of the hierarchy.
+pub fn candidate_tops(h: &Hierarchy, r: &Rings, leaves: &[Key]) -> Vec<Key> {
+    leaves
+        .iter()
+        .filter(|c| c.k > 0 && c.i % 2 == 0 && c.j % 2 == 0)
+        .map(|c| Key::new(c.k - 1, c.i / 2, c.j / 2))
+        .filter(|t| {
+            let c = t.central_child();
+            h.is_full_leaf(c) && classify(h, r, c).0 == Class::FixedCenterRegular
+        })
+        .collect()
+}

@@ -1,0 +1,181 @@
+//! The local coarsening of paper 000 Sec. 5.3 (`hexmesh::hex::blossom`): 37 hexagons of level
+//! k + 1 become 7 of level k where every hexagon within the 4-ring is FIXED_CENTER_REGULAR; the
+//! seven form a blossom (six MOVED_CENTER_3 hexagons around their top) whose 60 triangles meet
+//! the Sec. 6 bounds; anything but a plain region within the 4-ring prevents it; the datasets
+//! get blossoms and keep every bound.
+
+use hexmesh::geom::{dist, Point};
+use hexmesh::hex::blossom::{can_form, candidate_tops, coarsen};
+use hexmesh::hex::classify::{classify, rings, Class};
+use hexmesh::hex::dual::{extract_patched, first_inverted, Placement};
+use hexmesh::hex::extended::{delaunay_violations, mesh_extended, min_angle_bound, relocations};
+use hexmesh::hex::lattice::{Key, Lattice};
+use hexmesh::hex::mc3::{verdict, Chain, Verdict};
+use hexmesh::hex::{Cell, Hierarchy};
+use hexmesh::mesher::Budget;
+use hexmesh::quality::{verdict as quality_verdict, Bounds};
+use hexmesh::{Hexagon, Params};
+
+/// A hierarchy whose leaves are all of level `level` (no points).
+fn uniform(level: u8) -> Hierarchy {
+    let lattice = Lattice::new(Hexagon {
+        center: [0.0, 0.0],
+        circumradius: 1.0,
+    });
+    let mut h = Hierarchy::new(lattice, Vec::new(), Budget::default());
+    for k in 0..level {
+        let span = 2i64 << k;
+        for i in -span..=span {
+            for j in -span..=span {
+                let key = Key::new(k, i, j);
+                if key.inside() && h.is_full_leaf(key) {
+                    h.subdivide(key).expect("subdivides");
+                }
+            }
+        }
+    }
+    h
+}
+
+fn full_leaves(h: &Hierarchy) -> usize {
+    h.leaves()
+        .iter()
+        .filter(|(_, c)| *c == Cell::Full { subdivided: false })
+        .count()
+}
+
+fn radius_ratio(t: [Point; 3]) -> f64 {
+    let (a, b, c) = (dist(t[1], t[2]), dist(t[0], t[2]), dist(t[0], t[1]));
+    let s = (a + b + c) / 2.0;
+    let area = (s * (s - a) * (s - b) * (s - c)).max(0.0).sqrt();
+    a * b * c / (4.0 * area) / (2.0 * area / s)
+}
+
+#[test]
+fn a_plain_region_coarsens_into_a_blossom_of_seven_hexagons_with_sixty_triangles() {
+    let mut h = uniform(4);
+    let top = Key::new(3, 0, 0);
+    let r = rings(&h);
+    assert!(can_form(&h, &r, top));
+    let before = full_leaves(&h);
+    let merged = coarsen(&mut h, &r, &[top]);
+    assert_eq!(merged.len(), 7);
+    assert_eq!(before - full_leaves(&h), 30, "37 hexagons become 7");
+    h.check_invariants().expect("balanced");
+    let r = rings(&h);
+    for d in 0..6 {
+        let n = top.neighbor(d);
+        assert!(h.is_full_leaf(n));
+        let (class, strip) = classify(&h, &r, n);
+        assert_eq!(class, Class::MovedCenter3, "neighbour {d}");
+        assert_eq!(n.neighbor(strip.expect("a strip").top()), top);
+    }
+    assert_eq!(
+        verdict(&h, &r, top),
+        Verdict::Chain(Chain {
+            top,
+            start: 0,
+            len: 6
+        })
+    );
+    // The dual around the blossom: 60 triangles touching its fins, its six centres or its top,
+    // every one within the bounds of Sec. 6.
+    let (moved, patch) = relocations(&h, &r);
+    let (mesh, keys) = extract_patched(&h, Placement::Relocated, &moved, &patch);
+    let mut watched: Vec<Key> = patch.fin_owner.keys().copied().collect();
+    watched.push(top.canonical());
+    watched.extend((0..6).map(|d| top.neighbor(d).canonical()));
+    let touches = |t: usize| {
+        mesh.triangles[t]
+            .iter()
+            .any(|&v| watched.contains(&keys[v as usize]))
+    };
+    let lo = min_angle_bound() - 1e-6;
+    let mut count = 0;
+    for t in (0..mesh.triangles.len()).filter(|&t| touches(t)) {
+        let [a, b, c] = mesh.corners(t);
+        for (p, q, s) in [(a, b, c), (b, c, a), (c, a, b)] {
+            let x = hexmesh::hex::fuzz::angle_deg(p, q, s);
+            assert!((lo..=90.0 + 1e-6).contains(&x), "triangle {t}: {x}°");
+        }
+        assert!(radius_ratio([a, b, c]) <= 1.20787);
+        count += 1;
+    }
+    assert_eq!(count, 60);
+    assert!(first_inverted(&mesh).is_none());
+    assert!(delaunay_violations(&mesh).is_empty());
+}
+
+#[test]
+fn anything_but_a_plain_region_within_the_four_ring_prevents_the_blossom() {
+    let top = Key::new(3, 0, 0);
+    let c = top.central_child();
+    // A subdivided cell at distance 5 of the centre gives a fin to a cell at distance 4.
+    let mut h = uniform(4);
+    h.subdivide(Key::new(4, c.i + 5, c.j)).expect("subdivides");
+    assert!(!can_form(&h, &rings(&h), top), "a fin in the 4-ring");
+    // At distance 6 the fins fall outside the 4-ring.
+    let mut h = uniform(4);
+    h.subdivide(Key::new(4, c.i + 6, c.j)).expect("subdivides");
+    assert!(can_form(&h, &rings(&h), top), "fins beyond the 4-ring");
+    // A point in the 4-ring: occupied and ringed cells are not FIXED_CENTER_REGULAR.
+    let lattice = Lattice::new(Hexagon {
+        center: [0.0, 0.0],
+        circumradius: 1.0,
+    });
+    let far = lattice.center(Key::new(4, c.i + 4, c.j));
+    let mut h = Hierarchy::new(lattice, vec![far], Budget::default());
+    for k in 0..4u8 {
+        let span = 2i64 << k;
+        for i in -span..=span {
+            for j in -span..=span {
+                let key = Key::new(k, i, j);
+                if key.inside() && h.is_full_leaf(key) {
+                    h.subdivide(key).expect("subdivides");
+                }
+            }
+        }
+    }
+    assert!(h.is_occupied(Key::new(4, c.i + 4, c.j)));
+    assert!(!can_form(&h, &rings(&h), top), "a point in the 4-ring");
+    // A top whose neighbour is not subdivided has no 37 cells to coarsen.
+    let h = uniform(3);
+    assert!(!can_form(&h, &rings(&h), top));
+}
+
+#[test]
+fn candidates_are_tried_in_key_order_and_blossoms_never_overlap() {
+    let mut h = uniform(5);
+    let r = rings(&h);
+    let leaves: Vec<Key> = h
+        .leaves()
+        .into_iter()
+        .filter(|(_, c)| *c == Cell::Full { subdivided: false })
+        .map(|(k, _)| k)
+        .collect();
+    let tops = candidate_tops(&h, &r, &leaves);
+    let merged = coarsen(&mut h, &r, &tops);
+    assert!(merged.len() >= 14, "a level-5 plane holds several blossoms");
+    let mut unique = merged.clone();
+    unique.sort();
+    unique.dedup();
+    assert_eq!(unique.len(), merged.len(), "blossoms share no hexagon");
+    h.check_invariants().expect("balanced");
+    // The same tops in another order give the same blossoms.
+    let mut again = uniform(5);
+    let mut reversed = tops.clone();
+    reversed.reverse();
+    assert_eq!(coarsen(&mut again, &r, &reversed), merged);
+}
+
+#[test]
+fn the_random_datasets_get_blossoms_and_keep_every_hex_bound() {
+    for name in ["plane-100", "plane-1k"] {
+        let input = hexmesh::datasets::by_name(name).expect("dataset");
+        let run = mesh_extended(&input, &Params::default()).expect("meshes");
+        assert!(run.stats.blossoms > 0, "{name}: no blossom formed");
+        let bounds = Bounds::parse("hex").expect("bounds");
+        let v = quality_verdict(&run.mesh, Some(&input), Some(&bounds));
+        assert!(v.passed(), "{name}: {v}");
+    }
+}

@@ -20,6 +20,11 @@ const BAD_INPUTS: &[(&str, &str)] = &[
     ("missing_vertex.poly", "missing_vertex.poly:9:"),
     ("crossing_segments.poly", "crossing_segments.poly:9:"),
     ("duplicate_points.node", "duplicate_points.node:6:"),
+    ("point_on_segment.poly", "point_on_segment.poly:6:"),
+    (
+        "outside_given_hexagon.node",
+        "outside_given_hexagon.node:5:",
+    ),
 ];
 
 fn assert_refused(args: &[&str], needle: &str) {

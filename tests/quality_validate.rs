@@ -311,9 +311,10 @@ fn a_rounded_split_point_conforms_but_a_kink_does_not() {
         "the midpoint must be off the line"
     );
     let apex = [0.0, 1.0];
+    // The triangle a, b, apex as a PSLG, whose side ab the mesh splits.
     let input = Pslg {
         points: vec![a, b, apex],
-        segments: vec![[0, 1]],
+        segments: vec![[0, 1], [1, 2], [2, 0]],
         ..Pslg::default()
     };
     let split = |mid: [f64; 2]| mesh(&[a, b, apex, mid], &[[0, 3, 2], [3, 1, 2]]);

@@ -341,6 +341,10 @@ fn run_case(
         return outcome;
     };
     if run.mesh.triangles.is_empty() {
+        // A mesher that finishes without a triangle has failed, even if it says complete.
+        if row.err.is_empty() {
+            row.err = "the mesh has no triangles".into();
+        }
         return outcome;
     }
     let bounds = match bounds_for(name) {

@@ -46,7 +46,9 @@ pub struct MaxAngle {
 }
 
 impl fmt::Display for MaxAngle {
+    /// One line: a multi-line failure (CGAL's assertion messages) is joined with spaces.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let failure = crate::report::row::one_line(&self.failure);
         match self.angle {
             Some(a) => write!(
                 f,
@@ -56,12 +58,12 @@ impl fmt::Display for MaxAngle {
                 self.triangles,
                 self.seconds,
                 self.failed_at,
-                self.failure
+                failure
             ),
             None => write!(
                 f,
                 "{}: no angle met; {:.2}° failed: {}",
-                self.mesher, self.failed_at, self.failure
+                self.mesher, self.failed_at, failure
             ),
         }
     }

@@ -157,3 +157,91 @@ fn the_hexagon_picture_is_drawn_for_hex_simple_and_refused_for_others() {
     ]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
 }
+
+#[test]
+fn mesh_exits_1_when_its_mesh_misses_the_requested_angle_and_says_which() {
+    for (input, mesher) in [
+        ("tests/fixtures/refs/sliver_pslg.poly", "triangle"),
+        ("tests/fixtures/refs/sliver_pslg.poly", "spade"),
+        ("tests/fixtures/refs/translated_close_points.node", "spade"),
+    ] {
+        let prefix = temp(&format!("missed-angle-{mesher}"));
+        let p = prefix.to_str().expect("utf-8");
+        let out = hexmesh(&[
+            "mesh",
+            input,
+            "--mesher",
+            mesher,
+            "--min-angle",
+            "25",
+            "-o",
+            p,
+            "--timeout",
+            "60",
+        ]);
+        let t = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{input} {mesher}: {t}");
+        assert!(t.contains("fails --bounds min-angle=25: min angle"), "{t}");
+        // Written for inspection, and verify agrees.
+        let out = hexmesh(&["verify", p, "--input", input, "--bounds", "min-angle=25"]);
+        assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+        // --no-check skips the check, as before.
+        let out = hexmesh(&[
+            "mesh",
+            input,
+            "--mesher",
+            mesher,
+            "--min-angle",
+            "25",
+            "-o",
+            p,
+            "--no-check",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    }
+}
+
+#[test]
+fn a_cgal_exception_is_an_error_of_mesh_and_an_error_row_of_max_angle() {
+    let input = "tests/fixtures/refs/sliver_pslg.poly";
+    let prefix = temp("sliver-cgal");
+    let out = hexmesh(&[
+        "mesh",
+        input,
+        "--mesher",
+        "cgal",
+        "-o",
+        prefix.to_str().expect("utf-8"),
+    ]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("mesher cgal: CGAL: CGAL ERROR: assertion violation"),
+        "{t}"
+    );
+    assert!(
+        !t.contains("panicked") && !t.contains("terminate called"),
+        "{t}"
+    );
+    assert!(!prefix.with_extension("ele").exists());
+
+    let out = hexmesh(&["max-angle", input, "--mesher", "cgal", "--timeout", "10"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+    let mut lines = stdout.lines();
+    let row = lines.next().expect("the row");
+    assert!(
+        row.starts_with("cgal: no angle met; 20.00° failed: error: CGAL: CGAL ERROR"),
+        "{row}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(lines.next().expect("the JSON line")).expect("JSON");
+    assert!(v["angle"].is_null(), "{v}");
+    assert!(
+        v["failure"]
+            .as_str()
+            .is_some_and(|f| f.contains("Refine_edges.h")),
+        "{v}"
+    );
+    assert!(lines.next().is_none(), "{stdout}");
+}

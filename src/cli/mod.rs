@@ -144,6 +144,10 @@ struct MeshArgs {
     /// when time is up (Triangle and spade cannot be stopped any other way).
     #[arg(long, default_value_t = 600.0)]
     timeout: f64,
+    /// Do not check the mesh against the mesher's promises (and the requested minimum angle)
+    /// before exiting; by default a mesh that fails them is written but exits 1.
+    #[arg(long)]
+    no_check: bool,
 }
 
 #[derive(Args)]
@@ -304,6 +308,11 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     for path in written {
         println!("{}", path.display());
     }
+    let failed = if args.no_check {
+        None
+    } else {
+        failed_promise(mesher.name(), &input, &run.mesh, args.min_angle)?
+    };
     if let Some(path) = &args.hexagons {
         match mesher.name() {
             "hex-simple" => crate::hex::write_hexagons_svg(&input, &params, path)?,
@@ -316,7 +325,37 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         }
         println!("{}", path.display());
     }
+    if let Some((bounds, problem)) = failed {
+        eprintln!(
+            "hexmesh: the {} mesh fails --bounds {bounds}: {problem}; it is written for \
+             inspection (`hexmesh verify {} --input {} --bounds {bounds}` lists every failure)",
+            mesher.name(),
+            args.prefix.display(),
+            args.input
+        );
+        return Ok(ExitCode::from(1));
+    }
     Ok(ExitCode::SUCCESS)
+}
+
+/// What `mesh` holds a finished mesh to: the mesher's own promises (`Bounds::parse` of its
+/// name) and, for a reference asked for a minimum angle, that angle. Returns the bounds'
+/// name and the first problem when the mesh fails them: no mesh is passed on as good
+/// without being checked (DESIGN.md "Bad input").
+fn failed_promise(
+    mesher: &str,
+    input: &Pslg,
+    mesh: &crate::mesh::TriMesh,
+    min_angle: Option<f64>,
+) -> Result<Option<(String, String)>> {
+    let mut bounds = crate::quality::Bounds::parse(mesher)?;
+    let mut name = mesher.to_string();
+    if let Some(angle) = min_angle.filter(|_| crate::report::REFERENCES.contains(&mesher)) {
+        bounds = bounds.with_min_angle(angle)?;
+        name = format!("min-angle={angle}");
+    }
+    let verdict = crate::quality::verdict(mesh, Some(input), Some(&bounds));
+    Ok((!verdict.passed()).then(|| (name, crate::report::first_problem(&verdict))))
 }
 
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {

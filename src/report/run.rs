@@ -390,7 +390,7 @@ fn run_case(
 }
 
 /// The first validity violation, else the first failed check, in one line.
-fn first_problem(v: &quality::Verdict) -> String {
+pub(crate) fn first_problem(v: &quality::Verdict) -> String {
     if let Some(first) = v.violations.first() {
         let more = v.violations.len() - 1;
         let tail = if more > 0 {

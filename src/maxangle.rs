@@ -154,8 +154,8 @@ fn finish(
 }
 
 /// The smallest angle of `mesh` in degrees (`quality::metrics`), once `quality::validate`
-/// finds it valid: every input point a vertex bit-exactly, and with `conforming` every input
-/// segment a chain of mesh edges. The first violation is the error.
+/// finds it valid: every input point a vertex bit-exactly, one disc for a point set, and with
+/// `conforming` every input segment a chain of mesh edges. The first violation is the error.
 pub fn check_mesh(
     input: &Pslg,
     mesh: &TriMesh,
@@ -165,7 +165,8 @@ pub fn check_mesh(
         return Err("no triangles".into());
     }
     let options = ValidateOptions {
-        single_component: false,
+        // The mesh of a point set is one disc (its bounding hexagon), as `verify` holds it.
+        single_component: !input.has_segments(),
         conforming: conforming && input.has_segments(),
     };
     if let Some(v) = validate(mesh, Some(input), &options).first() {

@@ -420,6 +420,11 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
     if !matches!(args.mesher.as_str(), "hex" | "hex-simple") {
         crate::registry::mesher(&args.mesher)?;
     }
+    if args.cases == 0 {
+        return Err(Error::Usage(
+            "--cases must be at least 1: a campaign of no cases shows nothing".into(),
+        ));
+    }
     let bar = if std::io::stderr().is_terminal() {
         let bar = indicatif::ProgressBar::new(args.cases);
         bar.set_style(

@@ -327,3 +327,33 @@ fn a_rounded_split_point_conforms_but_a_kink_does_not() {
         "{v:#?}"
     );
 }
+
+/// Segments that close no cycle bound nothing, so the mesher keeps its own domain (hex: the
+/// bounding hexagon) and the boundary is not held to them; once they close a loop it is.
+#[test]
+fn the_boundary_is_held_to_the_segments_only_when_they_bound_a_region() {
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let m = mesh(&square, &[[0, 1, 2], [0, 2, 3]]);
+    let options = ValidateOptions {
+        conforming: true,
+        ..ValidateOptions::default()
+    };
+    let open = Pslg {
+        points: square.to_vec(),
+        segments: vec![[0, 1], [1, 2]],
+        ..Pslg::default()
+    };
+    assert_eq!(validate(&m, Some(&open), &options), vec![]);
+    let closed = Pslg {
+        segments: vec![[0, 1], [1, 2], [2, 0]],
+        ..open
+    };
+    let v = validate(&m, Some(&closed), &options);
+    assert_eq!(
+        v.iter()
+            .filter(|x| matches!(x, Violation::BoundaryOffSegments { .. }))
+            .count(),
+        2,
+        "{v:#?}"
+    );
+}

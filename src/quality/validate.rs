@@ -556,6 +556,31 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
     out
 }
 
+/// True when the segments close a cycle, so that they bound a region: they do not cross
+/// (`Pslg::check`), so a cycle of them is a closed curve. Union-find over the endpoints.
+fn segments_bound_a_region(input: &Pslg) -> bool {
+    let mut parent: Vec<usize> = (0..input.points.len()).collect();
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    for s in &input.segments {
+        let (a, b) = (s[0] as usize, s[1] as usize);
+        if a >= parent.len() || b >= parent.len() || a == b {
+            continue;
+        }
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra == rb {
+            return true;
+        }
+        parent[ra] = rb;
+    }
+    false
+}
+
 /// A hole seed inside (or on an edge of) a triangle means the mesher meshed the hole; seeds
 /// on an input segment decide nothing and are skipped. Triangles are matched to the seeds in
 /// their x-range, found by binary search in the seeds sorted by x.
@@ -1126,10 +1151,12 @@ fn input_conformity(
         }
     }
 
-    // The domain of a PSLG is what its segments bound: once every segment is a chain of
-    // edges, every boundary edge must be one of those chains' edges. (A broken chain is
-    // reported above; its boundary edges would only repeat it.)
-    if conforms {
+    // The domain of a PSLG is what its segments bound (Triangle's .poly semantics): once
+    // every segment is a chain of edges, every boundary edge must be one of those chains'
+    // edges. (A broken chain is reported above; its boundary edges would only repeat it.)
+    // Segments that bound nothing leave the mesher its own domain (hex keeps the bounding
+    // hexagon): then there is nothing to hold the boundary to.
+    if conforms && segments_bound_a_region(input) {
         on_segments.sort_unstable();
         for e in boundary {
             let key = (e.from.min(e.to), e.from.max(e.to));

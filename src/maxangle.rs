@@ -43,6 +43,9 @@ pub struct MaxAngle {
     pub failure: String,
     /// Meshing calls made.
     pub attempts: usize,
+    /// The mesher's effective settings (`Mesher::settings`) for the last good request, or for
+    /// the failed one when none was good, and the per-request timeout of the isolated child.
+    pub settings: String,
 }
 
 impl fmt::Display for MaxAngle {
@@ -91,14 +94,30 @@ pub fn max_angle(
         )));
     }
     input.validate_input()?;
+    let registered = crate::registry::mesher(mesher)?;
     // Only meshers that promise to keep segments are held to it (DESIGN.md "Checks").
-    let conforming = crate::registry::mesher(mesher)?.supports_segments();
+    let conforming = registered.supports_segments();
+    let settings = |angle: f64| {
+        format!(
+            "{}; each request isolated with a {}s timeout",
+            registered.settings(&Params::default().with_min_angle(angle)),
+            timeout.as_secs_f64()
+        )
+    };
     let mut best: Option<(f64, f64, usize, f64)> = None;
     let mut attempts = 0;
     for k in 0u32.. {
         let angle = start + f64::from(k) * step;
         if angle >= CEILING {
-            return Ok(finish(mesher, best, angle, "reached 60°".into(), attempts));
+            let shown = settings(best.map_or(angle, |b| b.0));
+            return Ok(finish(
+                mesher,
+                best,
+                angle,
+                "reached 60°".into(),
+                attempts,
+                shown,
+            ));
         }
         attempts += 1;
         let params = Params::default().with_min_angle(angle);
@@ -128,7 +147,8 @@ pub fn max_angle(
             },
         };
         if let Some(reason) = failure {
-            return Ok(finish(mesher, best, angle, reason, attempts));
+            let shown = settings(best.map_or(angle, |b| b.0));
+            return Ok(finish(mesher, best, angle, reason, attempts, shown));
         }
     }
     unreachable!("the loop returns once the angle reaches the ceiling")
@@ -140,6 +160,7 @@ fn finish(
     failed_at: f64,
     failure: String,
     attempts: usize,
+    settings: String,
 ) -> MaxAngle {
     MaxAngle {
         mesher: mesher.to_string(),
@@ -150,6 +171,7 @@ fn finish(
         failed_at,
         failure,
         attempts,
+        settings,
     }
 }
 
@@ -223,6 +245,7 @@ mod tests {
             33.75,
             "x".into(),
             55,
+            "s".into(),
         );
         let text = row.to_string();
         assert!(

@@ -101,6 +101,13 @@ fn max_angle_prints_a_row_and_json() {
     let angle = v["angle"].as_f64().expect("an angle");
     assert!((30.0..45.0).contains(&angle), "{angle}");
     assert!(v["triangles"].as_u64().is_some_and(|t| t > 0));
+    // The effective settings of the last good request: Triangle's switch string at that angle.
+    let settings = v["settings"].as_str().expect("settings");
+    assert!(
+        settings.contains(&format!("triangulate(\"pzAQaq{angle:.15}\")"))
+            && settings.contains("2s timeout"),
+        "{settings}"
+    );
 }
 
 #[test]

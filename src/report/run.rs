@@ -454,6 +454,7 @@ fn run_max_angle(
         triangles: None,
         time_s: None,
         next_failure: String::new(),
+        settings: String::new(),
         err: String::new(),
     };
     if input.has_segments() && !mesher.supports_segments() {
@@ -475,6 +476,7 @@ fn run_max_angle(
                 row.time_s = Some(m.seconds);
             }
             row.next_failure = one_line(&format!("{:.2}°: {}", m.failed_at, m.failure));
+            row.settings = one_line(&m.settings);
         }
         Err(e) => row.err = one_line(&e.to_string()),
     }

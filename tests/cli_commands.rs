@@ -252,3 +252,25 @@ fn a_cgal_exception_is_an_error_of_mesh_and_an_error_row_of_max_angle() {
     );
     assert!(lines.next().is_none(), "{stdout}");
 }
+
+#[test]
+fn triangle_dying_and_cgal_throwing_on_a_lattice_input_are_errors_not_crashes() {
+    let input = "tests/fixtures/refs/lattice_triangle_segfault.node";
+    let prefix = temp("lattice");
+    let p = prefix.to_str().expect("utf-8");
+    let out = hexmesh(&["mesh", input, "--mesher", "triangle", "-o", p]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("mesher triangle: isolated child was killed by signal 11"),
+        "{t}"
+    );
+    let out = hexmesh(&["mesh", input, "--mesher", "cgal", "-o", p]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{t}");
+    assert!(t.contains("CGAL ERROR: assertion violation"), "{t}");
+    assert!(!prefix.with_extension("ele").exists());
+    // The input itself is fine: spade meshes it and the mesh passes its bounds.
+    let out = hexmesh(&["mesh", input, "--mesher", "spade", "-o", p]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+}

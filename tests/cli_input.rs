@@ -161,6 +161,11 @@ fn report_fuzz_and_datasets_refuse_bad_arguments() {
     assert!(!out.exists(), "a refused report created {o}");
     assert_refused(&["fuzz", "--mesher", "nope", "--cases", "1"], "nope");
     assert_refused(&["fuzz", "--mesher", "spade", "--cases", "0"], "--cases");
+    // Triangle can end the process the campaign runs in.
+    assert_refused(
+        &["fuzz", "--mesher", "triangle", "--cases", "1"],
+        "Triangle can exit",
+    );
     // --out naming a file, not a directory.
     assert_refused(
         &["datasets", "--out", "tests/fixtures/io/empty.node"],

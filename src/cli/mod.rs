@@ -339,9 +339,9 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
 }
 
 /// What `mesh` holds a finished mesh to: the mesher's own promises (`Bounds::parse` of its
-/// name) and, for a reference asked for a minimum angle, that angle. Returns the bounds'
-/// name and the first problem when the mesh fails them: no mesh is passed on as good
-/// without being checked (DESIGN.md "Bad input").
+/// name) and, for a reference, the minimum angle it was asked for (its default one when
+/// none was). Returns the bounds' name and the first problem when the mesh fails them: no
+/// mesh is passed on as good without being checked (DESIGN.md "Bad input").
 fn failed_promise(
     mesher: &str,
     input: &Pslg,
@@ -350,7 +350,11 @@ fn failed_promise(
 ) -> Result<Option<(String, String)>> {
     let mut bounds = crate::quality::Bounds::parse(mesher)?;
     let mut name = mesher.to_string();
-    if let Some(angle) = min_angle.filter(|_| crate::report::REFERENCES.contains(&mesher)) {
+    let asked = match min_angle {
+        Some(angle) if crate::report::REFERENCES.contains(&mesher) => Some(angle),
+        _ => crate::reference::default_min_angle(mesher),
+    };
+    if let Some(angle) = asked {
         bounds = bounds.with_min_angle(angle)?;
         name = format!("min-angle={angle}");
     }

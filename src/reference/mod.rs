@@ -19,6 +19,18 @@ use crate::error::{Error, InputError, Result};
 use crate::mesh::Pslg;
 use crate::mesher::Params;
 
+/// The minimum angle (degrees) a reference refines to when none is asked for: spade's 30°,
+/// Triangle's bare `q` 20°, CGAL's b = 0.125 (20.7°); `None` for any other mesher.
+pub fn default_min_angle(mesher: &str) -> Option<f64> {
+    match mesher {
+        "spade" => Some(spade::DEFAULT_MIN_ANGLE),
+        "triangle" => Some(triangle::DEFAULT_MIN_ANGLE),
+        #[cfg(feature = "cgal")]
+        "cgal" => Some(cgal::DEFAULT_SHAPE_BOUND.sqrt().asin().to_degrees()),
+        _ => None,
+    }
+}
+
 /// The lengths CGAL's and Triangle's refinement can measure, as a power of ten. Their quality
 /// tests multiply squared lengths (fourth powers of lengths), which f64 holds only between
 /// about 1e-77 and 1e77; beyond 1e±75 both were seen to return meshes far below the requested

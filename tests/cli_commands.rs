@@ -280,3 +280,29 @@ fn triangle_dying_and_cgal_throwing_on_a_lattice_input_are_errors_not_crashes() 
     let out = hexmesh(&["mesh", input, "--mesher", "cgal-conforming", "-o", p]);
     assert_eq!(out.status.code(), Some(0), "{}", text(&out));
 }
+
+/// Found by the issue 3/6 audit: a copy of the binary under another name could not mesh
+/// ("cannot find the hexmesh binary"), and with a `hexmesh` beside it would have run that one
+/// as its children. The command line now runs its children as itself.
+#[test]
+fn a_renamed_binary_runs_its_children_as_itself() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = temp("renamed");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let copy = dir.join("hexmesh-copy");
+    std::fs::copy(env!("CARGO_BIN_EXE_hexmesh"), &copy).expect("copy the binary");
+    // A decoy named hexmesh that would fail every child it ran.
+    let decoy = dir.join("hexmesh");
+    std::fs::write(&decoy, "#!/bin/sh\nexit 3\n").expect("decoy");
+    std::fs::set_permissions(&decoy, std::fs::Permissions::from_mode(0o755)).expect("chmod");
+    let prefix = dir.join("plane-100");
+    let out = Command::new(&copy)
+        .args(["mesh", "datasets/plane-100.node", "--mesher", "spade", "-o"])
+        .arg(&prefix)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("HEXMESH_EXE")
+        .output()
+        .expect("the copy runs");
+    assert!(out.status.success(), "{}", text(&out));
+    assert!(prefix.with_extension("ele").exists());
+}

@@ -168,6 +168,7 @@ struct VerifyArgs {
 
 /// Runs the command line; `main` returns this.
 pub fn main() -> ExitCode {
+    crate::isolate::running_as_cli();
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {

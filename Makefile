@@ -4,9 +4,21 @@ CARGO ?= cargo
 VENV := .venv
 PYTHON := $(VENV)/bin/python
 
-.PHONY: deps cgal fonts venv build report test lint bench fuzz clean
+.PHONY: deps cxx python cgal fonts venv build report test lint bench fuzz clean
 
-deps: cgal fonts venv
+deps: cxx python cgal fonts venv
+
+# A C++ compiler for the CGAL shim (cxx-build); a Rust toolchain brings only a C linker.
+cxx:
+	@dpkg -s g++ >/dev/null 2>&1 || { \
+	  echo "installing g++"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq g++; }
+
+# python3 with venv and pip, for the virtualenv below (a fresh Debian has neither).
+python:
+	@dpkg -s python3-venv >/dev/null 2>&1 || { \
+	  echo "installing python3-venv"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv; }
 
 # CGAL 5.5 (header-only) with GMP, MPFR and Boost, from Debian, when dpkg says it is missing.
 cgal:
@@ -21,7 +33,7 @@ fonts:
 
 # meshio and pandas, to check that Python users can read our output.
 venv: $(VENV)/.done
-$(VENV)/.done: requirements-test.txt
+$(VENV)/.done: requirements-test.txt | python
 	python3 -m venv $(VENV)
 	$(PYTHON) -m pip install -q -r requirements-test.txt
 	touch $@

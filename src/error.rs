@@ -30,51 +30,96 @@ pub enum InputError {
     PointOnSegment { point: usize, segment: usize },
     /// A hole seed has a NaN or infinite coordinate.
     NonFiniteHole { index: usize },
+    /// Point `index` of a point set does not lie strictly inside its bounding hexagon: the
+    /// one the input gives, or (`fitted`) the one fitted to the points, which f64 cannot
+    /// make contain points that are too close together for their coordinates.
+    OutsideHexagon {
+        index: usize,
+        point: [f64; 2],
+        fitted: bool,
+    },
     /// The points are too close together or too far apart for f64 to mesh them.
     Range { detail: String },
 }
 
-impl fmt::Display for InputError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+impl InputError {
+    /// The problem in words, with point, segment and hole numbers counted from `first`: 0 for
+    /// the 0-based indices of a `Pslg`, or the first number of the file the input came from
+    /// (Triangle's files number from 0 or 1), so that the numbers match what the file says.
+    pub fn describe(&self, first: u32) -> String {
+        let n = |i: &usize| *i as u64 + u64::from(first);
         match self {
-            InputError::Empty => write!(f, "the input has no points"),
-            InputError::NonFinite { index, point } => write!(
-                f,
-                "point {index} has a non-finite coordinate ({}, {})",
-                point[0], point[1]
+            InputError::Empty => "the input has no points".to_string(),
+            InputError::NonFinite { index, point } => format!(
+                "point {} has a non-finite coordinate ({}, {})",
+                n(index),
+                point[0],
+                point[1]
             ),
             InputError::Duplicate {
-                first,
-                second,
+                first: a,
+                second: b,
                 point,
-            } => write!(
-                f,
-                "points {first} and {second} are duplicates, both at ({}, {})",
-                point[0], point[1]
+            } => format!(
+                "points {} and {} are duplicates, both at ({:?}, {:?})",
+                n(a),
+                n(b),
+                point[0],
+                point[1]
             ),
             InputError::MissingVertex {
                 segment,
                 vertex,
                 count,
-            } => write!(
-                f,
-                "segment {segment} names vertex {vertex}, but there are only {count} points"
+            } => format!(
+                "segment {} names vertex {}, but there are only {count} points",
+                n(segment),
+                vertex + i64::from(first)
             ),
             InputError::DegenerateSegment { segment } => {
-                write!(f, "segment {segment} joins a vertex to itself")
+                format!("segment {} joins a vertex to itself", n(segment))
             }
-            InputError::CrossingSegments { first, second } => {
-                write!(f, "segments {first} and {second} cross or overlap")
-            }
-            InputError::PointOnSegment { point, segment } => write!(
-                f,
-                "point {point} lies inside segment {segment} without being one of its endpoints"
+            InputError::CrossingSegments {
+                first: a,
+                second: b,
+            } => format!("segments {} and {} cross or overlap", n(a), n(b)),
+            InputError::PointOnSegment { point, segment } => format!(
+                "point {} lies inside segment {} without being one of its endpoints",
+                n(point),
+                n(segment)
             ),
             InputError::NonFiniteHole { index } => {
-                write!(f, "hole {index} has a non-finite coordinate")
+                format!("hole {} has a non-finite coordinate", n(index))
             }
-            InputError::Range { detail } => write!(f, "{detail}"),
+            InputError::OutsideHexagon {
+                index,
+                point,
+                fitted: false,
+            } => format!(
+                "point {} ({:?}, {:?}) does not lie strictly inside the given bounding hexagon",
+                n(index),
+                point[0],
+                point[1]
+            ),
+            InputError::OutsideHexagon {
+                index,
+                point,
+                fitted: true,
+            } => format!(
+                "point {} ({:?}, {:?}) is not strictly inside the bounding hexagon fitted to the \
+                 points: they are too close together for f64 at their coordinates",
+                n(index),
+                point[0],
+                point[1]
+            ),
+            InputError::Range { detail } => detail.clone(),
         }
+    }
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.describe(0))
     }
 }
 
@@ -92,11 +137,14 @@ pub enum Error {
         line: usize,
         message: String,
     },
-    /// The input is unusable; `path` is the file it came from, when it came from one.
+    /// The input is unusable; `path` is the file it came from, when it came from one, and
+    /// `first_index` the number that file gives its first point, segment and hole (0 or 1;
+    /// 0 without a file): the message counts from it, `problem` keeps 0-based indices.
     Input {
         path: Option<PathBuf>,
         line: Option<usize>,
         problem: InputError,
+        first_index: u32,
     },
     /// No mesher of that name is registered.
     UnknownMesher { name: String, known: Vec<String> },
@@ -113,6 +161,7 @@ impl Error {
             path: None,
             line: None,
             problem,
+            first_index: 0,
         }
     }
 
@@ -152,11 +201,15 @@ impl fmt::Display for Error {
                 path,
                 line,
                 problem,
-            } => match (path, line) {
-                (Some(p), Some(l)) => write!(f, "{}:{l}: {problem}", p.display()),
-                (Some(p), None) => write!(f, "{}: {problem}", p.display()),
-                _ => write!(f, "bad input: {problem}"),
-            },
+                first_index,
+            } => {
+                let problem = problem.describe(*first_index);
+                match (path, line) {
+                    (Some(p), Some(l)) => write!(f, "{}:{l}: {problem}", p.display()),
+                    (Some(p), None) => write!(f, "{}: {problem}", p.display()),
+                    _ => write!(f, "bad input: {problem}"),
+                }
+            }
             Error::UnknownMesher { name, known } => write!(
                 f,
                 "unknown mesher '{name}'; registered meshers: {}",

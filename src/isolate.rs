@@ -585,9 +585,23 @@ fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
     })
 }
 
+/// The running executable, when it is the hexmesh command line: set by `cli::main`, whatever
+/// the binary is called, so that its children are the same binary.
+static CLI_EXE: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+/// Records that the running executable is the hexmesh command line (`cli::main` calls it).
+/// A copy renamed `hexmesh-v2` then runs its children as itself, rather than failing, or
+/// running another `hexmesh` that happens to sit next to it.
+pub fn running_as_cli() {
+    if let Ok(current) = std::env::current_exe() {
+        let _ = CLI_EXE.set(current);
+    }
+}
+
 /// The hexmesh binary to run children of: `HEXMESH_EXE` if set; else the running executable
-/// if it is hexmesh; else a `hexmesh` next to it or one directory up (cargo puts test
-/// binaries in target/<profile>/deps/, the binary in target/<profile>/).
+/// if it is the command line (`running_as_cli`) or is called hexmesh; else a `hexmesh` next to
+/// it or one directory up (cargo puts test binaries in target/<profile>/deps/, the binary in
+/// target/<profile>/).
 pub fn find_exe() -> Result<PathBuf> {
     if let Some(p) = std::env::var_os("HEXMESH_EXE").filter(|p| !p.is_empty()) {
         let p = PathBuf::from(p);
@@ -598,6 +612,9 @@ pub fn find_exe() -> Result<PathBuf> {
             "HEXMESH_EXE={} is not a file",
             p.display()
         )));
+    }
+    if let Some(cli) = CLI_EXE.get() {
+        return Ok(cli.clone());
     }
     let current = std::env::current_exe().map_err(|e| Error::Io {
         path: PathBuf::from("/proc/self/exe"),

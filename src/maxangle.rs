@@ -43,10 +43,15 @@ pub struct MaxAngle {
     pub failure: String,
     /// Meshing calls made.
     pub attempts: usize,
+    /// The mesher's effective settings (`Mesher::settings`) for the last good request, or for
+    /// the failed one when none was good, and the per-request timeout of the isolated child.
+    pub settings: String,
 }
 
 impl fmt::Display for MaxAngle {
+    /// One line: a multi-line failure (CGAL's assertion messages) is joined with spaces.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let failure = crate::report::row::one_line(&self.failure);
         match self.angle {
             Some(a) => write!(
                 f,
@@ -56,12 +61,12 @@ impl fmt::Display for MaxAngle {
                 self.triangles,
                 self.seconds,
                 self.failed_at,
-                self.failure
+                failure
             ),
             None => write!(
                 f,
                 "{}: no angle met; {:.2}° failed: {}",
-                self.mesher, self.failed_at, self.failure
+                self.mesher, self.failed_at, failure
             ),
         }
     }
@@ -89,14 +94,30 @@ pub fn max_angle(
         )));
     }
     input.validate_input()?;
+    let registered = crate::registry::mesher(mesher)?;
     // Only meshers that promise to keep segments are held to it (DESIGN.md "Checks").
-    let conforming = crate::registry::mesher(mesher)?.supports_segments();
+    let conforming = registered.supports_segments();
+    let settings = |angle: f64| {
+        format!(
+            "{}; each request isolated with a {}s timeout",
+            registered.settings(&Params::default().with_min_angle(angle)),
+            timeout.as_secs_f64()
+        )
+    };
     let mut best: Option<(f64, f64, usize, f64)> = None;
     let mut attempts = 0;
     for k in 0u32.. {
         let angle = start + f64::from(k) * step;
         if angle >= CEILING {
-            return Ok(finish(mesher, best, angle, "reached 60°".into(), attempts));
+            let shown = settings(best.map_or(angle, |b| b.0));
+            return Ok(finish(
+                mesher,
+                best,
+                angle,
+                "reached 60°".into(),
+                attempts,
+                shown,
+            ));
         }
         attempts += 1;
         let params = Params::default().with_min_angle(angle);
@@ -126,7 +147,8 @@ pub fn max_angle(
             },
         };
         if let Some(reason) = failure {
-            return Ok(finish(mesher, best, angle, reason, attempts));
+            let shown = settings(best.map_or(angle, |b| b.0));
+            return Ok(finish(mesher, best, angle, reason, attempts, shown));
         }
     }
     unreachable!("the loop returns once the angle reaches the ceiling")
@@ -138,6 +160,7 @@ fn finish(
     failed_at: f64,
     failure: String,
     attempts: usize,
+    settings: String,
 ) -> MaxAngle {
     MaxAngle {
         mesher: mesher.to_string(),
@@ -148,12 +171,13 @@ fn finish(
         failed_at,
         failure,
         attempts,
+        settings,
     }
 }
 
 /// The smallest angle of `mesh` in degrees (`quality::metrics`), once `quality::validate`
-/// finds it valid: every input point a vertex bit-exactly, and with `conforming` every input
-/// segment a chain of mesh edges. The first violation is the error.
+/// finds it valid: every input point a vertex bit-exactly, one disc for a point set, and with
+/// `conforming` every input segment a chain of mesh edges. The first violation is the error.
 pub fn check_mesh(
     input: &Pslg,
     mesh: &TriMesh,
@@ -163,7 +187,8 @@ pub fn check_mesh(
         return Err("no triangles".into());
     }
     let options = ValidateOptions {
-        single_component: false,
+        // The mesh of a point set is one disc (its bounding hexagon), as `verify` holds it.
+        single_component: !input.has_segments(),
         conforming: conforming && input.has_segments(),
     };
     if let Some(v) = validate(mesh, Some(input), &options).first() {
@@ -220,6 +245,7 @@ mod tests {
             33.75,
             "x".into(),
             55,
+            "s".into(),
         );
         let text = row.to_string();
         assert!(

@@ -56,8 +56,9 @@ impl Pslg {
 
     /// Checks the input before any mesher sees it: at least one point, finite coordinates,
     /// no duplicate points, segments naming existing distinct vertices, no two segments
-    /// crossing or overlapping, no point inside a segment, finite hole seeds, and a coordinate
-    /// range that f64 can mesh. Returns the first problem found, deterministically.
+    /// crossing or overlapping, no point inside a segment, finite hole seeds, a coordinate
+    /// range that f64 can mesh, and for a point set every point strictly inside its bounding
+    /// hexagon. Returns the first problem found, deterministically.
     pub fn check(&self) -> std::result::Result<(), InputError> {
         if self.points.is_empty() {
             return Err(InputError::Empty);
@@ -104,6 +105,19 @@ impl Pslg {
         for (index, h) in self.holes.iter().enumerate() {
             if !h[0].is_finite() || !h[1].is_finite() {
                 return Err(InputError::NonFiniteHole { index });
+            }
+        }
+        if !self.has_segments() {
+            // The domain of a point set is its bounding hexagon: every mesher puts the hexagon
+            // (or the references its corners) around the points, so a point on or outside it
+            // would be a duplicate corner or a point outside the domain.
+            let hex = self.bounding_hexagon();
+            if let Some(index) = self.points.iter().position(|&p| !hex.contains_strictly(p)) {
+                return Err(InputError::OutsideHexagon {
+                    index,
+                    point: self.points[index],
+                    fitted: self.hexagon.is_none(),
+                });
             }
         }
         self.check_segment_intersections()
@@ -361,6 +375,48 @@ mod tests {
             })
         ));
         assert_eq!(Pslg::default().check(), Err(InputError::Empty));
+    }
+
+    #[test]
+    fn a_point_outside_a_given_hexagon_is_refused() {
+        let p = Pslg {
+            points: vec![[0.0, 0.0], [5.0, 5.0]],
+            hexagon: Some(Hexagon {
+                center: [0.0, 0.0],
+                circumradius: 1.0,
+            }),
+            ..Pslg::default()
+        };
+        assert_eq!(
+            p.check(),
+            Err(InputError::OutsideHexagon {
+                index: 1,
+                point: [5.0, 5.0],
+                fitted: false
+            })
+        );
+        // A corner of the given hexagon is on it, not strictly inside.
+        let corner = Pslg {
+            points: vec![[0.0, 0.0], [1.0, 0.0]],
+            ..p
+        };
+        assert!(matches!(
+            corner.check(),
+            Err(InputError::OutsideHexagon { index: 1, .. })
+        ));
+    }
+
+    #[test]
+    fn points_one_ulp_apart_have_no_representable_fitted_hexagon() {
+        // The minimum enclosing circle has radius 1.1e-16 at coordinate 1: its hexagon's
+        // corners round onto the points themselves.
+        let p = Pslg::from_points(vec![[1.0, 1.0], [1.0 + f64::EPSILON, 1.0]]);
+        assert!(matches!(
+            p.check(),
+            Err(InputError::OutsideHexagon { fitted: true, .. })
+        ));
+        let message = p.check().unwrap_err().to_string();
+        assert!(message.contains("too close together"), "{message}");
     }
 
     #[test]

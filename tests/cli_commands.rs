@@ -101,6 +101,13 @@ fn max_angle_prints_a_row_and_json() {
     let angle = v["angle"].as_f64().expect("an angle");
     assert!((30.0..45.0).contains(&angle), "{angle}");
     assert!(v["triangles"].as_u64().is_some_and(|t| t > 0));
+    // The effective settings of the last good request: Triangle's switch string at that angle.
+    let settings = v["settings"].as_str().expect("settings");
+    assert!(
+        settings.contains(&format!("triangulate(\"pzAQaq{angle:.15}\")"))
+            && settings.contains("2s timeout"),
+        "{settings}"
+    );
 }
 
 #[test]
@@ -156,4 +163,146 @@ fn the_hexagon_picture_is_drawn_for_hex_simple_and_refused_for_others() {
         s,
     ]);
     assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+}
+
+#[test]
+fn mesh_exits_1_when_its_mesh_misses_the_requested_angle_and_says_which() {
+    for (input, mesher) in [
+        ("tests/fixtures/refs/sliver_pslg.poly", "triangle"),
+        ("tests/fixtures/refs/sliver_pslg.poly", "spade"),
+        ("tests/fixtures/refs/translated_close_points.node", "spade"),
+    ] {
+        let prefix = temp(&format!("missed-angle-{mesher}"));
+        let p = prefix.to_str().expect("utf-8");
+        let out = hexmesh(&[
+            "mesh",
+            input,
+            "--mesher",
+            mesher,
+            "--min-angle",
+            "25",
+            "-o",
+            p,
+            "--timeout",
+            "60",
+        ]);
+        let t = text(&out);
+        assert_eq!(out.status.code(), Some(1), "{input} {mesher}: {t}");
+        assert!(t.contains("fails --bounds min-angle=25: min angle"), "{t}");
+        // Written for inspection, and verify agrees.
+        let out = hexmesh(&["verify", p, "--input", input, "--bounds", "min-angle=25"]);
+        assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+        // --no-check skips the check, as before.
+        let out = hexmesh(&[
+            "mesh",
+            input,
+            "--mesher",
+            mesher,
+            "--min-angle",
+            "25",
+            "-o",
+            p,
+            "--no-check",
+        ]);
+        assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+    }
+}
+
+#[test]
+fn a_cgal_exception_is_an_error_of_mesh_and_an_error_row_of_max_angle() {
+    let input = "tests/fixtures/refs/sliver_pslg.poly";
+    let prefix = temp("sliver-cgal");
+    let out = hexmesh(&[
+        "mesh",
+        input,
+        "--mesher",
+        "cgal",
+        "-o",
+        prefix.to_str().expect("utf-8"),
+    ]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("mesher cgal: CGAL: CGAL ERROR: assertion violation"),
+        "{t}"
+    );
+    assert!(
+        !t.contains("panicked") && !t.contains("terminate called"),
+        "{t}"
+    );
+    assert!(!prefix.with_extension("ele").exists());
+
+    let out = hexmesh(&["max-angle", input, "--mesher", "cgal", "--timeout", "10"]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+    let mut lines = stdout.lines();
+    let row = lines.next().expect("the row");
+    assert!(
+        row.starts_with("cgal: no angle met; 20.00° failed: error: CGAL: CGAL ERROR"),
+        "{row}"
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(lines.next().expect("the JSON line")).expect("JSON");
+    assert!(v["angle"].is_null(), "{v}");
+    assert!(
+        v["failure"]
+            .as_str()
+            .is_some_and(|f| f.contains("Refine_edges.h")),
+        "{v}"
+    );
+    assert!(lines.next().is_none(), "{stdout}");
+}
+
+#[test]
+fn triangle_dying_and_cgal_throwing_on_a_lattice_input_are_errors_not_crashes() {
+    let input = "tests/fixtures/refs/lattice_triangle_segfault.node";
+    let prefix = temp("lattice");
+    let p = prefix.to_str().expect("utf-8");
+    let out = hexmesh(&["mesh", input, "--mesher", "triangle", "-o", p]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("mesher triangle: isolated child was killed by signal 11"),
+        "{t}"
+    );
+    let out = hexmesh(&["mesh", input, "--mesher", "cgal", "-o", p]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(2), "{t}");
+    assert!(t.contains("CGAL ERROR: assertion violation"), "{t}");
+    assert!(!prefix.with_extension("ele").exists());
+    // spade finishes and calls its mesh complete, but it has a sliver along the hexagon's edge
+    // (points an ulp inside it), far below its default 30°: mesh says so.
+    let out = hexmesh(&["mesh", input, "--mesher", "spade", "-o", p]);
+    let t = text(&out);
+    assert_eq!(out.status.code(), Some(1), "{t}");
+    assert!(t.contains("fails --bounds min-angle=30: min angle"), "{t}");
+    // cgal-conforming promises no angle: its mesh is valid and Delaunay.
+    let out = hexmesh(&["mesh", input, "--mesher", "cgal-conforming", "-o", p]);
+    assert_eq!(out.status.code(), Some(0), "{}", text(&out));
+}
+
+/// Found by the issue 3/6 audit: a copy of the binary under another name could not mesh
+/// ("cannot find the hexmesh binary"), and with a `hexmesh` beside it would have run that one
+/// as its children. The command line now runs its children as itself.
+#[test]
+fn a_renamed_binary_runs_its_children_as_itself() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = temp("renamed");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let copy = dir.join("hexmesh-copy");
+    std::fs::copy(env!("CARGO_BIN_EXE_hexmesh"), &copy).expect("copy the binary");
+    // A decoy named hexmesh that would fail every child it ran.
+    let decoy = dir.join("hexmesh");
+    std::fs::write(&decoy, "#!/bin/sh\nexit 3\n").expect("decoy");
+    std::fs::set_permissions(&decoy, std::fs::Permissions::from_mode(0o755)).expect("chmod");
+    let prefix = dir.join("plane-100");
+    let out = Command::new(&copy)
+        .args(["mesh", "datasets/plane-100.node", "--mesher", "spade", "-o"])
+        .arg(&prefix)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("HEXMESH_EXE")
+        .output()
+        .expect("the copy runs");
+    assert!(out.status.success(), "{}", text(&out));
+    assert!(prefix.with_extension("ele").exists());
 }

@@ -20,6 +20,11 @@ const BAD_INPUTS: &[(&str, &str)] = &[
     ("missing_vertex.poly", "missing_vertex.poly:9:"),
     ("crossing_segments.poly", "crossing_segments.poly:9:"),
     ("duplicate_points.node", "duplicate_points.node:6:"),
+    ("point_on_segment.poly", "point_on_segment.poly:6:"),
+    (
+        "outside_given_hexagon.node",
+        "outside_given_hexagon.node:5:",
+    ),
 ];
 
 fn assert_refused(args: &[&str], needle: &str) {
@@ -116,4 +121,78 @@ fn datasets_regenerates_the_committed_files_byte_for_byte() {
         );
     }
     let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
+fn max_angle_refuses_each_malformed_input_naming_file_and_line() {
+    for (file, needle) in BAD_INPUTS {
+        let path = format!("tests/fixtures/io/{file}");
+        assert_refused(&["max-angle", &path, "--mesher", "spade"], needle);
+    }
+}
+
+#[test]
+fn every_reference_refuses_each_malformed_input_before_it_runs() {
+    for mesher in ["cgal", "cgal-conforming", "triangle", "spade"] {
+        for (file, needle) in BAD_INPUTS {
+            let path = format!("tests/fixtures/io/{file}");
+            assert_refused(
+                &["mesh", &path, "--mesher", mesher, "-o", "/dev/null/x"],
+                needle,
+            );
+        }
+    }
+}
+
+#[test]
+fn report_fuzz_and_datasets_refuse_bad_arguments() {
+    let out = std::env::temp_dir().join(format!("hexmesh-bad-args-{}", std::process::id()));
+    let o = out.to_str().expect("utf-8 temp dir");
+    assert_refused(
+        &["report", "--datasets", "no-such-set", "--out", o],
+        "unknown dataset 'no-such-set'",
+    );
+    assert_refused(
+        &["report", "--meshers", "nope", "--out", o],
+        "unknown mesher 'nope'",
+    );
+    assert_refused(&["report", "--runs", "0", "--out", o], "--runs");
+    assert_refused(&["report", "--timeout", "0", "--out", o], "--timeout");
+    assert!(!out.exists(), "a refused report created {o}");
+    assert_refused(&["fuzz", "--mesher", "nope", "--cases", "1"], "nope");
+    assert_refused(&["fuzz", "--mesher", "spade", "--cases", "0"], "--cases");
+    // Triangle can end the process the campaign runs in.
+    assert_refused(
+        &["fuzz", "--mesher", "triangle", "--cases", "1"],
+        "Triangle can exit",
+    );
+    // --out naming a file, not a directory.
+    assert_refused(
+        &["datasets", "--out", "tests/fixtures/io/empty.node"],
+        "empty.node",
+    );
+    assert_refused(
+        &[
+            "max-angle",
+            "close-pair",
+            "--mesher",
+            "spade",
+            "--step",
+            "0",
+        ],
+        "--step",
+    );
+    assert_refused(
+        &[
+            "mesh",
+            "close-pair",
+            "--mesher",
+            "spade",
+            "--min-angle",
+            "NaN",
+            "-o",
+            o,
+        ],
+        "--min-angle",
+    );
 }

@@ -54,7 +54,23 @@ fn an_edge_used_three_times_is_caught() {
 
 #[test]
 fn overlapping_triangles_are_caught() {
-    assert_caught("overlapping_triangles", &[], "FAILED");
+    assert_caught("overlapping_triangles", &[], "fold at interior vertex 0");
+    assert_caught(
+        "nested_triangle_overlap",
+        &[],
+        "the mesh covers the plane 2 times",
+    );
+    assert_caught("t_junction", &[], "cross");
+}
+
+#[test]
+fn a_mesh_without_triangles_fails_even_the_hex_bounds() {
+    assert_caught("no_triangles", &[], "the mesh has no triangles");
+    assert_caught(
+        "no_triangles",
+        &["--bounds", "hex"],
+        "the mesh has no triangles",
+    );
 }
 
 #[test]
@@ -64,6 +80,22 @@ fn a_hole_in_the_mesh_of_a_point_set_is_caught() {
         "hole_in_point_set_mesh",
         &["--input", &input],
         "hole in the mesh",
+    );
+}
+
+#[test]
+fn a_meshed_hole_and_a_mesh_past_the_segments_are_caught_against_the_input() {
+    let input = fixture("hole_meshed_input.poly");
+    assert_caught(
+        "hole_meshed",
+        &["--input", &input, "--bounds", "triangle"],
+        "hole seed 0 (1.5, 1.5) lies in triangle 8",
+    );
+    let input = fixture("spills_past_segments_input.poly");
+    assert_caught(
+        "spills_past_segments",
+        &["--input", &input, "--bounds", "triangle"],
+        "lies on no input segment",
     );
 }
 
@@ -89,6 +121,39 @@ fn a_non_delaunay_edge_is_caught() {
         &["--bounds", "delaunay"],
         "non-Delaunay edges (exact)",
     );
+}
+
+#[test]
+fn a_point_inside_the_circle_by_2_pow_minus_52_is_caught_and_its_flip_passes() {
+    assert_caught(
+        "non_delaunay_by_a_hair",
+        &["--bounds", "delaunay"],
+        "non-Delaunay edges (exact)",
+    );
+    let (code, text) = verify("delaunay_by_a_hair", &["--bounds", "delaunay"]);
+    assert_eq!(code, 0, "{text}");
+}
+
+#[test]
+fn coordinates_far_from_1_are_printed_short_and_exact() {
+    // A failure at 1e100 names its corners as 1e100, not as a 1 and a hundred zeros.
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli_verify_far");
+    std::fs::create_dir_all(&dir).expect("dir");
+    let prefix = dir.join("far");
+    std::fs::write(
+        prefix.with_extension("node"),
+        "3 2 0 0\n1 0 0\n2 1e100 0\n3 0 1e-300\n",
+    )
+    .expect("node");
+    std::fs::write(prefix.with_extension("ele"), "1 3 0\n1 1 3 2\n").expect("ele");
+    let out = hexmesh(&["verify", prefix.to_str().expect("utf-8 path")]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(
+        text.contains("(1e100, 0)") && text.contains("(0, 1e-300)"),
+        "{text}"
+    );
+    assert!(text.lines().all(|l| l.len() < 400), "{text}");
 }
 
 #[test]

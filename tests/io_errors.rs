@@ -132,6 +132,7 @@ fn input_error(name: &str) -> (String, Option<usize>, InputError) {
             path,
             line,
             problem,
+            ..
         } => (
             path.as_deref().map(file_name).unwrap_or_default(),
             line,
@@ -295,4 +296,68 @@ mod never_panics {
             }
         }
     }
+}
+
+#[test]
+fn input_errors_count_points_and_segments_as_the_file_does() {
+    // crossing_segments.poly numbers from 1: its segments 1 and 2 cross.
+    let text = read_input(&fixture("crossing_segments.poly"))
+        .expect_err("crossing accepted")
+        .to_string();
+    assert!(text.contains("segments 1 and 2 cross"), "{text}");
+    // The same square numbered from 0.
+    let text = read_input(&fixture("crossing_segments_0_based.poly"))
+        .expect_err("crossing accepted")
+        .to_string();
+    assert!(text.contains("crossing_segments_0_based.poly:9:"), "{text}");
+    assert!(text.contains("segments 0 and 1 cross"), "{text}");
+    // point_on_segment.poly: point 3 (1, 0) lies inside segment 1.
+    let text = read_input(&fixture("point_on_segment.poly"))
+        .expect_err("point on segment accepted")
+        .to_string();
+    assert!(
+        text.contains("point 3 lies inside segment 1 without"),
+        "{text}"
+    );
+    let text = read_input(&fixture("degenerate_segment.poly"))
+        .expect_err("degenerate segment accepted")
+        .to_string();
+    assert!(
+        text.contains("segment 2 joins a vertex to itself"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_point_outside_the_given_hexagon_is_refused_at_its_line() {
+    let (file, line, problem) = input_error("outside_given_hexagon.node");
+    assert_eq!(
+        (file.as_str(), line),
+        ("outside_given_hexagon.node", Some(5))
+    );
+    assert!(
+        matches!(
+            problem,
+            InputError::OutsideHexagon {
+                index: 1,
+                fitted: false,
+                ..
+            }
+        ),
+        "{problem:?}"
+    );
+    let text = read_input(&fixture("outside_given_hexagon.node"))
+        .expect_err("outside accepted")
+        .to_string();
+    assert!(text.contains("point 2 (5.0, 5.0)"), "{text}");
+}
+
+#[test]
+fn points_too_close_for_their_fitted_hexagon_are_refused_at_a_line() {
+    let (_, line, problem) = input_error("points_one_ulp_apart.node");
+    assert!(
+        matches!(problem, InputError::OutsideHexagon { fitted: true, .. }),
+        "{problem:?}"
+    );
+    assert!(matches!(line, Some(4 | 5)), "{line:?}");
 }

@@ -243,7 +243,7 @@ fn every_fixture_is_readable_and_checked_without_panicking() {
         })
         .collect();
     prefixes.sort();
-    assert_eq!(prefixes.len(), 12, "{prefixes:?}");
+    assert_eq!(prefixes.len(), 19, "{prefixes:?}");
     for p in prefixes {
         let mesh = read_mesh(&p);
         for name in ["hex", "valid"] {
@@ -277,4 +277,114 @@ fn the_io_reader_reads_every_fixture_as_the_test_reader_does() {
     let input = hexmesh::io::read_input(&fixture("missing_input_point_input.node"))
         .expect("the input of missing_input_point");
     assert_eq!(input.points, read_node("missing_input_point_input.node"));
+}
+
+#[test]
+fn no_triangles_is_invalid_so_no_bound_passes_on_it() {
+    let mesh = read_mesh("no_triangles");
+    assert_eq!(
+        plain(&mesh).first(),
+        Some(&Violation::NoTriangles { vertices: 3 })
+    );
+    let out = verdict(&mesh, None, Some(&Bounds::parse("hex").expect("hex")));
+    assert!(!out.passed(), "{out}");
+}
+
+#[test]
+fn nested_triangle_overlap_is_covered_twice_without_crossing_edges() {
+    let v = plain(&read_mesh("nested_triangle_overlap"));
+    assert!(
+        !v.iter()
+            .any(|x| matches!(x, Violation::BoundaryCrossing { .. })),
+        "{v:#?}"
+    );
+    assert!(
+        v.iter()
+            .any(|x| matches!(x, Violation::Overlap { covering: 2, .. })),
+        "{v:#?}"
+    );
+}
+
+#[test]
+fn t_junction_is_caught_as_boundary_edges_overlapping() {
+    let v = plain(&read_mesh("t_junction"));
+    // Edge 1-2 (0-based [0, 1]) of the upper triangle runs along the two lower edges at 4.
+    assert!(
+        v.iter()
+            .any(|x| matches!(x, Violation::BoundaryCrossing { first: [0, 1], .. })),
+        "{v:#?}"
+    );
+}
+
+#[test]
+fn non_delaunay_by_a_hair_fails_only_the_exact_test() {
+    let bad = read_mesh("non_delaunay_by_a_hair");
+    assert_eq!(plain(&bad), vec![]);
+    let out = verdict(
+        &bad,
+        None,
+        Some(&Bounds::parse("delaunay").expect("delaunay")),
+    );
+    assert!(!out.passed(), "{out}");
+    assert_eq!(out.metrics.delaunay_violations, 1);
+    // The angle-sum form with its 1e-7° slack cannot see 2^-52.
+    assert_eq!(out.metrics.delaunay_tolerance_violations, 0);
+
+    let good = read_mesh("delaunay_by_a_hair");
+    let out = verdict(
+        &good,
+        None,
+        Some(&Bounds::parse("delaunay").expect("delaunay")),
+    );
+    assert!(out.passed(), "{out}");
+}
+
+#[test]
+fn hole_meshed_is_caught_at_its_seed_and_the_mesh_is_otherwise_valid() {
+    let mesh = read_mesh("hole_meshed");
+    assert_eq!(plain(&mesh), vec![]);
+    let input = hexmesh::io::read_input(&fixture("hole_meshed_input.poly")).expect("input");
+    let v = validate(&mesh, Some(&input), &ValidateOptions::default());
+    assert_eq!(
+        v,
+        vec![Violation::HoleCovered {
+            hole: 0,
+            point: [1.5, 1.5],
+            triangle: 8
+        }]
+    );
+    // The ring alone (triangles 0..8) is right.
+    let ring = TriMesh {
+        triangles: mesh.triangles[..8].to_vec(),
+        ..mesh
+    };
+    assert_eq!(
+        validate(&ring, Some(&input), &ValidateOptions::default()),
+        vec![]
+    );
+}
+
+#[test]
+fn spills_past_segments_is_caught_when_conformity_is_asked_for() {
+    let mesh = read_mesh("spills_past_segments");
+    let input =
+        hexmesh::io::read_input(&fixture("spills_past_segments_input.poly")).expect("input");
+    let conforming = ValidateOptions {
+        conforming: true,
+        ..ValidateOptions::default()
+    };
+    let v = validate(&mesh, Some(&input), &conforming);
+    assert_eq!(
+        v,
+        vec![Violation::BoundaryOffSegments {
+            edge: [2, 4],
+            points: [[2.0, 1.0], [1.0, 2.0]]
+        }]
+    );
+    // Without the notch triangle the L is meshed exactly.
+    let l = TriMesh {
+        triangles: mesh.triangles[..4].to_vec(),
+        ..mesh
+    };
+    assert_eq!(validate(&l, Some(&input), &conforming), vec![]);
 }

@@ -52,6 +52,7 @@ enum Corruption {
     DeleteInteriorTriangle(usize),
     DuplicateVertex(usize),
     WrongIndex(usize, usize, usize),
+    NudgeVertexOneUlp(usize, bool),
 }
 
 fn corruptions() -> impl Strategy<Value = Corruption> {
@@ -63,6 +64,7 @@ fn corruptions() -> impl Strategy<Value = Corruption> {
         i().prop_map(Corruption::DeleteInteriorTriangle),
         i().prop_map(Corruption::DuplicateVertex),
         (i(), 0..3usize, i()).prop_map(|(t, k, w)| Corruption::WrongIndex(t, k, w)),
+        (i(), any::<bool>()).prop_map(|(v, up)| Corruption::NudgeVertexOneUlp(v, up)),
     ]
 }
 
@@ -158,6 +160,23 @@ proptest! {
                 mesh.triangles[t][k] = w;
                 let v = validate(&mesh, None, &ONE_DISC);
                 prop_assert!(!v.is_empty(), "corner {} of triangle {} set to {} went unnoticed", k, t, w);
+            }
+            Corruption::NudgeVertexOneUlp(v, up) => {
+                // One ulp is invisible to any tolerance; the input point must still be missed.
+                let v = v % nv;
+                let p = mesh.vertices[v];
+                // Away from zero adds one to the bits, towards zero subtracts one; 0 goes to 5e-324.
+                let x = if p[0] == 0.0 {
+                    5e-324
+                } else if up {
+                    f64::from_bits(p[0].to_bits() + 1)
+                } else {
+                    f64::from_bits(p[0].to_bits() - 1)
+                };
+                mesh.vertices[v] = [x, p[1]];
+                let input = Pslg::from_points(points.clone());
+                let out = validate(&mesh, Some(&input), &ONE_DISC);
+                prop_assert!(has(&out, |x| matches!(x, Violation::MissingInputPoint { point, .. } if *point == p)), "{:#?}", out);
             }
         }
     }

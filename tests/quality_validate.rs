@@ -311,9 +311,10 @@ fn a_rounded_split_point_conforms_but_a_kink_does_not() {
         "the midpoint must be off the line"
     );
     let apex = [0.0, 1.0];
+    // The triangle a, b, apex as a PSLG, whose side ab the mesh splits.
     let input = Pslg {
         points: vec![a, b, apex],
-        segments: vec![[0, 1]],
+        segments: vec![[0, 1], [1, 2], [2, 0]],
         ..Pslg::default()
     };
     let split = |mid: [f64; 2]| mesh(&[a, b, apex, mid], &[[0, 3, 2], [3, 1, 2]]);
@@ -323,6 +324,36 @@ fn a_rounded_split_point_conforms_but_a_kink_does_not() {
     assert!(
         v.iter()
             .any(|v| matches!(v, Violation::SegmentNotConforming { segment: 0, .. })),
+        "{v:#?}"
+    );
+}
+
+/// Segments that close no cycle bound nothing, so the mesher keeps its own domain (hex: the
+/// bounding hexagon) and the boundary is not held to them; once they close a loop it is.
+#[test]
+fn the_boundary_is_held_to_the_segments_only_when_they_bound_a_region() {
+    let square = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let m = mesh(&square, &[[0, 1, 2], [0, 2, 3]]);
+    let options = ValidateOptions {
+        conforming: true,
+        ..ValidateOptions::default()
+    };
+    let open = Pslg {
+        points: square.to_vec(),
+        segments: vec![[0, 1], [1, 2]],
+        ..Pslg::default()
+    };
+    assert_eq!(validate(&m, Some(&open), &options), vec![]);
+    let closed = Pslg {
+        segments: vec![[0, 1], [1, 2], [2, 0]],
+        ..open
+    };
+    let v = validate(&m, Some(&closed), &options);
+    assert_eq!(
+        v.iter()
+            .filter(|x| matches!(x, Violation::BoundaryOffSegments { .. }))
+            .count(),
+        2,
         "{v:#?}"
     );
 }

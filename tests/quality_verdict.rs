@@ -20,19 +20,60 @@ fn strip() -> (TriMesh, Vec<[f64; 2]>) {
     (mesh, vertices)
 }
 
-#[test]
-fn hex_bounds_hold_away_from_segments_on_a_pslg() {
-    let (mesh, points) = strip();
+/// A 3 × 3 grid of cells in the rectangle [0, 3] × [0, 3] framed by its four sides as segments
+/// (Triangle's .poly semantics: the domain is what they bound). The first and last columns
+/// are half as wide (x in [0, 0.5] and [2.5, 3]), so their triangles have 26.6° angles; the
+/// others are 45°/45°/90°, and the two cells of the middle row away from the frame touch no
+/// segment.
+fn framed_grid() -> (TriMesh, Pslg) {
+    let xs = [0.0, 0.5, 1.5, 2.5, 3.0];
+    let ys = [0.0, 1.0, 2.0, 3.0];
+    let vertices: Vec<[f64; 2]> = ys
+        .iter()
+        .flat_map(|&y| xs.iter().map(move |&x| [x, y]))
+        .collect();
+    let v = |i: u32, j: u32| j * 5 + i;
+    let mut triangles = Vec::new();
+    for j in 0..3 {
+        for i in 0..4 {
+            triangles.push([v(i, j), v(i + 1, j), v(i + 1, j + 1)]);
+            triangles.push([v(i, j), v(i + 1, j + 1), v(i, j + 1)]);
+        }
+    }
+    // The frame as a chain of segments through every boundary vertex.
+    let ring: Vec<u32> = (0..4)
+        .map(|i| v(i, 0))
+        .chain((0..3).map(|j| v(4, j)))
+        .chain((1..5).rev().map(|i| v(i, 3)))
+        .chain((1..4).rev().map(|j| v(0, j)))
+        .collect();
+    let segments = (0..ring.len())
+        .map(|k| [ring[k], ring[(k + 1) % ring.len()]])
+        .collect();
     let pslg = Pslg {
-        points: points.clone(),
-        segments: vec![[0, 4]],
+        points: vertices.clone(),
+        segments,
         ..Pslg::default()
     };
+    (
+        TriMesh {
+            vertices,
+            triangles,
+        },
+        pslg,
+    )
+}
+
+#[test]
+fn hex_bounds_hold_away_from_segments_on_a_pslg() {
+    let (mesh, pslg) = framed_grid();
     let hex = Bounds::parse("hex").expect("hex");
     let out = verdict(&mesh, Some(&pslg), Some(&hex));
     assert!(out.passed(), "{out}");
     let split = out.split.as_ref().expect("a PSLG gets the split figures");
-    assert_eq!(split.near_triangles, vec![0, 1]);
+    // Cells (1, 1) and (2, 1) are the triangles 10, 11, 12, 13; everything else touches the frame.
+    let near: Vec<usize> = (0..24).filter(|t| !(10..14).contains(t)).collect();
+    assert_eq!(split.near_triangles, near);
     let near_min = split.near.min_angle.expect("near min angle").value;
     assert!((near_min - 26.565051177).abs() < 1e-6, "{near_min}");
     let text = out.to_string();
@@ -42,7 +83,7 @@ fn hex_bounds_hold_away_from_segments_on_a_pslg() {
     );
 
     // The same mesh as the mesh of a point set must meet the bounds everywhere.
-    let points_only = Pslg::from_points(points);
+    let points_only = Pslg::from_points(pslg.points);
     let out = verdict(&mesh, Some(&points_only), Some(&hex));
     assert!(!out.passed());
     let failed: Vec<&str> = out

@@ -216,3 +216,42 @@ fn the_close_pair_and_collinear_points_mesh_at_30_degrees() {
         }
     }
 }
+
+/// Found by the issue 3/6 audit: at 1e-80 and 1e80 CGAL returned 6.6° for 30° as complete,
+/// and Triangle 2.3° for 25° at 1e-100 (fourth powers of lengths leave f64). Such domains are
+/// now refused before the mesher runs; 1e-60 and 1e60 still mesh to the request.
+#[test]
+fn cgal_and_triangle_refuse_scales_whose_fourth_powers_leave_f64() {
+    let scaled = |s: f64| {
+        let mut p = point_set();
+        for q in &mut p.points {
+            *q = [q[0] * s, q[1] * s];
+        }
+        p
+    };
+    let names: &[&str] = if cfg!(feature = "cgal") {
+        &["triangle", "cgal", "cgal-conforming"]
+    } else {
+        &["triangle"]
+    };
+    let params = Params::default().with_min_angle(30.0);
+    for &name in names {
+        let m = mesher(name).unwrap();
+        for s in [1e-80, 1e80, 1e-100] {
+            match m.mesh(&scaled(s), &params) {
+                Err(hexmesh::Error::Input {
+                    problem: hexmesh::InputError::Range { detail },
+                    ..
+                }) => assert!(detail.contains("scale the input"), "{name} {s}: {detail}"),
+                other => panic!("{name} at {s}: expected a range error, got {other:?}"),
+            }
+        }
+        for s in [1e-60, 1e60] {
+            let input = scaled(s);
+            let run = m.mesh(&input, &params).unwrap();
+            if name != "cgal-conforming" {
+                assert_good_mesh(name, &input, &run, 30.0);
+            }
+        }
+    }
+}

@@ -214,14 +214,18 @@ impl Source {
             path: Some(path.to_path_buf()),
             line: (line > 0).then_some(line),
             problem: problem.clone(),
+            first_index: base,
         };
         match problem {
             InputError::Empty => Error::Input {
                 path: Some(self.node_path.clone()),
                 line: None,
                 problem,
+                first_index: base,
             },
-            InputError::NonFinite { index, .. } => at(&self.node_path, self.point_line(index)),
+            InputError::NonFinite { index, .. } | InputError::OutsideHexagon { index, .. } => {
+                at(&self.node_path, self.point_line(index))
+            }
             InputError::Duplicate {
                 first,
                 second,

@@ -22,4 +22,16 @@ pub use metrics::{
     TriangleShape, Worst, DELAUNAY_ANGLE_SLACK_DEG,
 };
 pub use validate::{validate, ValidateOptions, Violation};
+
+/// A coordinate or area as text that names its f64 exactly (both forms are Rust's shortest
+/// round-trip output) and stays short: plain decimals for magnitudes in [1e-5, 1e16), which
+/// is how most meshes read, exponent form beyond, where plain decimals run to hundreds of
+/// digits (1e100 would print as a 1 and a hundred zeros).
+pub(crate) fn show(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() || (1e-5..1e16).contains(&v.abs()) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
 pub use verdict::{verdict, Check, Status, Verdict, WorstTriangle};

@@ -30,6 +30,8 @@ pub struct ValidateOptions {
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Violation {
+    /// The mesh has no triangles: it meshes nothing, so no bound may pass on it vacuously.
+    NoTriangles { vertices: usize },
     /// A triangle names a vertex that does not exist.
     IndexOutOfRange {
         triangle: usize,
@@ -110,6 +112,15 @@ pub enum Violation {
     },
     /// An input point is not a mesh vertex (bit-exact comparison).
     MissingInputPoint { input: usize, point: Point },
+    /// A hole seed of the input lies in triangle `triangle`: the hole is meshed.
+    HoleCovered {
+        hole: usize,
+        point: Point,
+        triangle: usize,
+    },
+    /// A boundary edge of the mesh lies on no input segment: the mesh of a PSLG ends where
+    /// the input has no boundary (it spills beyond the segments, or leaves a gap inside).
+    BoundaryOffSegments { edge: [u32; 2], points: [Point; 2] },
     /// An input segment is not a chain of mesh edges along it (within rounding, see `check_input`); `stuck_at` is the mesh vertex
     /// where the chain from the first endpoint breaks off (none when an endpoint is missing).
     SegmentNotConforming {
@@ -121,7 +132,7 @@ pub enum Violation {
 }
 
 fn pt(p: Point) -> String {
-    format!("({}, {})", p[0], p[1])
+    format!("({}, {})", super::show(p[0]), super::show(p[1]))
 }
 
 fn tri(points: &[Point; 3]) -> String {
@@ -131,6 +142,9 @@ fn tri(points: &[Point; 3]) -> String {
 impl fmt::Display for Violation {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
+            Violation::NoTriangles { vertices } => {
+                write!(f, "the mesh has no triangles ({vertices} vertices)")
+            }
             Violation::IndexOutOfRange {
                 triangle,
                 corner,
@@ -244,7 +258,9 @@ impl fmt::Display for Violation {
                 enclosed,
             } => write!(
                 f,
-                "the triangles cover an area of {triangles}, but the boundary loops enclose {enclosed}"
+                "the triangles cover an area of {}, but the boundary loops enclose {}",
+                super::show(*triangles),
+                super::show(*enclosed)
             ),
             Violation::HoleInMesh {
                 loops,
@@ -263,6 +279,21 @@ impl fmt::Display for Violation {
             Violation::MissingInputPoint { input, point } => {
                 write!(f, "input point {input} {} is not a mesh vertex", pt(*point))
             }
+            Violation::HoleCovered {
+                hole,
+                point,
+                triangle,
+            } => write!(
+                f,
+                "hole seed {hole} {} lies in triangle {triangle}: the hole is meshed",
+                pt(*point)
+            ),
+            Violation::BoundaryOffSegments { edge, points } => write!(
+                f,
+                "boundary edge {edge:?} {}-{} lies on no input segment: the mesh does not end at the segments",
+                pt(points[0]),
+                pt(points[1])
+            ),
             Violation::SegmentNotConforming {
                 segment,
                 endpoints,
@@ -288,6 +319,7 @@ impl Violation {
     /// A short snake_case name of the kind of violation, for tables and tests.
     pub fn kind(&self) -> &'static str {
         match self {
+            Violation::NoTriangles { .. } => "no_triangles",
             Violation::IndexOutOfRange { .. } => "index_out_of_range",
             Violation::NonFiniteVertex { .. } => "non_finite_vertex",
             Violation::Clockwise { .. } => "clockwise",
@@ -303,6 +335,8 @@ impl Violation {
             Violation::AreaMismatch { .. } => "area_mismatch",
             Violation::HoleInMesh { .. } => "hole_in_mesh",
             Violation::MissingInputPoint { .. } => "missing_input_point",
+            Violation::HoleCovered { .. } => "hole_covered",
+            Violation::BoundaryOffSegments { .. } => "boundary_off_segments",
             Violation::SegmentNotConforming { .. } => "segment_not_conforming",
         }
     }
@@ -407,6 +441,9 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
     let mut out = Vec::new();
     let verts = &mesh.vertices;
     let n = verts.len();
+    if mesh.triangles.is_empty() {
+        out.push(Violation::NoTriangles { vertices: n });
+    }
     let finite: Vec<bool> = verts
         .iter()
         .map(|p| p[0].is_finite() && p[1].is_finite())
@@ -513,9 +550,96 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
     }
 
     if let Some(input) = input {
-        input_conformity(mesh, &topo, input, opts.conforming, &mut out);
+        input_conformity(mesh, &topo, &boundary, input, opts.conforming, &mut out);
+        holes_covered(mesh, &geometric, input, &mut out);
     }
     out
+}
+
+/// True when the segments close a cycle, so that they bound a region: they do not cross
+/// (`Pslg::check`), so a cycle of them is a closed curve. Union-find over the endpoints.
+fn segments_bound_a_region(input: &Pslg) -> bool {
+    let mut parent: Vec<usize> = (0..input.points.len()).collect();
+    fn root(parent: &mut [usize], mut v: usize) -> usize {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    }
+    for s in &input.segments {
+        let (a, b) = (s[0] as usize, s[1] as usize);
+        if a >= parent.len() || b >= parent.len() || a == b {
+            continue;
+        }
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        if ra == rb {
+            return true;
+        }
+        parent[ra] = rb;
+    }
+    false
+}
+
+/// A hole seed inside (or on an edge of) a triangle means the mesher meshed the hole; seeds
+/// on an input segment decide nothing and are skipped. Triangles are matched to the seeds in
+/// their x-range, found by binary search in the seeds sorted by x.
+fn holes_covered(mesh: &TriMesh, geometric: &[bool], input: &Pslg, out: &mut Vec<Violation>) {
+    let on_segment = |q: Point| {
+        input.segments.iter().any(|s| {
+            match (
+                input.points.get(s[0] as usize),
+                input.points.get(s[1] as usize),
+            ) {
+                (Some(&a), Some(&b)) => {
+                    orient2d(a, b, q) == 0.0
+                        && q[0] >= a[0].min(b[0])
+                        && q[0] <= a[0].max(b[0])
+                        && q[1] >= a[1].min(b[1])
+                        && q[1] <= a[1].max(b[1])
+                }
+                _ => false,
+            }
+        })
+    };
+    let mut seeds: Vec<(usize, Point)> = input
+        .holes
+        .iter()
+        .copied()
+        .enumerate()
+        .filter(|(_, h)| h[0].is_finite() && h[1].is_finite() && !on_segment(*h))
+        .collect();
+    if seeds.is_empty() {
+        return;
+    }
+    seeds.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]).then(a.0.cmp(&b.0)));
+    let mut first: Vec<Option<usize>> = vec![None; input.holes.len()];
+    for (t, &g) in geometric.iter().enumerate() {
+        if !g {
+            continue;
+        }
+        let [a, b, c] = mesh.corners(t);
+        let (lo, hi) = (a[0].min(b[0]).min(c[0]), a[0].max(b[0]).max(c[0]));
+        let start = seeds.partition_point(|s| s.1[0] < lo);
+        for &(h, q) in seeds[start..].iter().take_while(|s| s.1[0] <= hi) {
+            let inside = orient2d(a, b, q) >= 0.0
+                && orient2d(b, c, q) >= 0.0
+                && orient2d(c, a, q) >= 0.0
+                && orient2d(a, b, c) > 0.0;
+            if inside && first[h].is_none() {
+                first[h] = Some(t);
+            }
+        }
+    }
+    for (hole, t) in first.iter().enumerate() {
+        if let Some(triangle) = *t {
+            out.push(Violation::HoleCovered {
+                hole,
+                point: input.holes[hole],
+                triangle,
+            });
+        }
+    }
 }
 
 /// Sorting by coordinate bits puts equal points next to each other; each later copy is
@@ -912,6 +1036,7 @@ fn area_balance(
 fn input_conformity(
     mesh: &TriMesh,
     topo: &Topology,
+    boundary: &[DirectedEdge],
     input: &Pslg,
     conforming: bool,
     out: &mut Vec<Violation>,
@@ -962,9 +1087,13 @@ fn input_conformity(
             .map(|e| e.1)
     };
 
+    // The mesh edges the segment chains walk, as (low, high) vertex pairs.
+    let mut on_segments: Vec<(u32, u32)> = Vec::new();
+    let mut conforms = true;
     for (s, seg) in input.segments.iter().enumerate() {
         let (ia, ib) = (seg[0] as usize, seg[1] as usize);
         let (Some(&pa), Some(&pb)) = (input.points.get(ia), input.points.get(ib)) else {
+            conforms = false;
             continue; // Pslg::check reports segments naming missing points
         };
         let not_conforming = |stuck_at| Violation::SegmentNotConforming {
@@ -975,6 +1104,7 @@ fn input_conformity(
         };
         let (Some(va), Some(vb)) = (vertex_of[ia], vertex_of[ib]) else {
             out.push(not_conforming(None));
+            conforms = false;
             continue;
         };
         // Progress along the dominant axis of the segment: exact for collinear points.
@@ -1008,11 +1138,33 @@ fn input_conformity(
                 })
                 .min_by(|&x, &y| progress(x).total_cmp(&progress(y)).then(x.cmp(&y)));
             match step {
-                Some(w) => u = w,
+                Some(w) => {
+                    on_segments.push((u.min(w), u.max(w)));
+                    u = w;
+                }
                 None => {
                     out.push(not_conforming(Some((u, mesh.vertices[u as usize]))));
+                    conforms = false;
                     break;
                 }
+            }
+        }
+    }
+
+    // The domain of a PSLG is what its segments bound (Triangle's .poly semantics): once
+    // every segment is a chain of edges, every boundary edge must be one of those chains'
+    // edges. (A broken chain is reported above; its boundary edges would only repeat it.)
+    // Segments that bound nothing leave the mesher its own domain (hex keeps the bounding
+    // hexagon): then there is nothing to hold the boundary to.
+    if conforms && segments_bound_a_region(input) {
+        on_segments.sort_unstable();
+        for e in boundary {
+            let key = (e.from.min(e.to), e.from.max(e.to));
+            if on_segments.binary_search(&key).is_err() {
+                out.push(Violation::BoundaryOffSegments {
+                    edge: [e.from, e.to],
+                    points: [mesh.vertices[e.from as usize], mesh.vertices[e.to as usize]],
+                });
             }
         }
     }

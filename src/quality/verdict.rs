@@ -221,12 +221,14 @@ fn number(v: Option<f64>) -> String {
     match v {
         None => "-".to_string(),
         Some(v) if v.fract() == 0.0 && v.abs() < 1e15 => format!("{v:.0}"),
+        // Seven decimals say nothing about 1e-9 and run long for 1e20: seven digits instead.
+        Some(v) if v.is_finite() && (v.abs() < 1e-4 || v.abs() >= 1e15) => format!("{v:.6e}"),
         Some(v) => format!("{v:.7}"),
     }
 }
 
 fn point(p: Point) -> String {
-    format!("({}, {})", p[0], p[1])
+    format!("({}, {})", super::show(p[0]), super::show(p[1]))
 }
 
 impl fmt::Display for Verdict {
@@ -238,7 +240,7 @@ impl fmt::Display for Verdict {
             self.bounds.as_deref().unwrap_or("none (validity only)"),
             m.vertices,
             m.triangles,
-            m.covered_area
+            super::show(m.covered_area)
         )?;
         let label = |c: &Check| match &c.note {
             Some(n) if c.status != Status::Skipped => format!("{} [{n}]", c.what),

@@ -15,8 +15,57 @@ pub mod triangle;
 pub use self::spade::SpadeMesher;
 pub use self::triangle::TriangleMesher;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, InputError, Result};
+use crate::mesh::Pslg;
 use crate::mesher::Params;
+
+/// The minimum angle (degrees) a reference refines to when none is asked for: spade's 30°,
+/// Triangle's bare `q` 20°, CGAL's b = 0.125 (20.7°); `None` for any other mesher.
+pub fn default_min_angle(mesher: &str) -> Option<f64> {
+    match mesher {
+        "spade" => Some(spade::DEFAULT_MIN_ANGLE),
+        "triangle" => Some(triangle::DEFAULT_MIN_ANGLE),
+        #[cfg(feature = "cgal")]
+        "cgal" => Some(cgal::DEFAULT_SHAPE_BOUND.sqrt().asin().to_degrees()),
+        _ => None,
+    }
+}
+
+/// The lengths CGAL's and Triangle's refinement can measure, as a power of ten. Their quality
+/// tests multiply squared lengths (fourth powers of lengths), which f64 holds only between
+/// about 1e-77 and 1e77; beyond 1e±75 both were seen to return meshes far below the requested
+/// angle as complete (CGAL at 1e-80 and 1e80 with 6.6° for 30°, Triangle at 1e-100 with 2.3°
+/// for 25°; cgal-conforming made zero-area triangles at 1e-160), or to stop with Triangle's
+/// "Ran out of precision". 1e70 leaves room for the refinement's smaller edges.
+pub const SCALE_LIMIT: f64 = 1e70;
+
+/// Refuses a domain whose coordinates exceed [`SCALE_LIMIT`] or whose closest points are
+/// nearer than its inverse: such a mesh would come back wrong, not fail.
+pub(crate) fn check_scale(mesher: &str, domain: &Pslg) -> Result<()> {
+    let largest = domain
+        .points
+        .iter()
+        .flat_map(|p| [p[0].abs(), p[1].abs()])
+        .fold(0.0, f64::max);
+    let range = |detail: String| Err(Error::input(InputError::Range { detail }));
+    if largest > SCALE_LIMIT {
+        return range(format!(
+            "coordinates as large as {largest:e} are beyond what {mesher} can measure \
+             (its quality tests need fourth powers of lengths, up to {SCALE_LIMIT:e}): scale the input"
+        ));
+    }
+    if let Some(c) = crate::quality::closest_pair(&domain.points) {
+        if c.distance < 1.0 / SCALE_LIMIT {
+            return range(format!(
+                "points {:e} apart are closer than {mesher} can measure (its quality tests \
+                 need fourth powers of lengths, down to {:e}): scale the input",
+                c.distance,
+                1.0 / SCALE_LIMIT
+            ));
+        }
+    }
+    Ok(())
+}
 
 /// Refuses requests no reference mesher can honour: a minimum angle outside [0°, 60°) (no
 /// triangle has all angles above 60°) or a maximum area that is not a positive finite number.

@@ -130,6 +130,7 @@ impl Mesher for TriangleMesher {
         input.validate_input()?;
         triangle_switches(params)?;
         let domain = input.reference_domain();
+        super::check_scale(NAME, &domain)?;
         if domain.points.len() < 3 {
             return Err(Error::mesher(NAME, "Triangle needs at least three points"));
         }

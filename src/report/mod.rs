@@ -27,6 +27,7 @@ use crate::error::{Error, Result};
 use crate::mesher::Params;
 
 pub use row::{Row, COLUMNS, VOLATILE_COLUMNS};
+pub(crate) use run::first_problem;
 pub use run::run_report;
 pub use table1::MaxAngleRow;
 

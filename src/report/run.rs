@@ -341,6 +341,10 @@ fn run_case(
         return outcome;
     };
     if run.mesh.triangles.is_empty() {
+        // A mesher that finishes without a triangle has failed, even if it says complete.
+        if row.err.is_empty() {
+            row.err = "the mesh has no triangles".into();
+        }
         return outcome;
     }
     let bounds = match bounds_for(name) {
@@ -386,7 +390,7 @@ fn run_case(
 }
 
 /// The first validity violation, else the first failed check, in one line.
-fn first_problem(v: &quality::Verdict) -> String {
+pub(crate) fn first_problem(v: &quality::Verdict) -> String {
     if let Some(first) = v.violations.first() {
         let more = v.violations.len() - 1;
         let tail = if more > 0 {
@@ -450,6 +454,7 @@ fn run_max_angle(
         triangles: None,
         time_s: None,
         next_failure: String::new(),
+        settings: String::new(),
         err: String::new(),
     };
     if input.has_segments() && !mesher.supports_segments() {
@@ -471,6 +476,7 @@ fn run_max_angle(
                 row.time_s = Some(m.seconds);
             }
             row.next_failure = one_line(&format!("{:.2}°: {}", m.failed_at, m.failure));
+            row.settings = one_line(&m.settings);
         }
         Err(e) => row.err = one_line(&e.to_string()),
     }

@@ -123,6 +123,8 @@ pub struct MaxAngleRow {
     pub time_s: Option<f64>,
     /// Why the next step counted as a failure (error, timeout, angle not reached, ...).
     pub next_failure: String,
+    /// The mesher's effective settings at `angle` (at the failed request when there is none).
+    pub settings: String,
     /// Set when the protocol itself could not run.
     pub err: String,
 }
@@ -137,6 +139,7 @@ pub const MAX_ANGLE_COLUMNS: &[&str] = &[
     "triangles",
     "time_s",
     "next_failure",
+    "settings",
     "err",
 ];
 
@@ -369,6 +372,7 @@ mod tests {
             triangles: Some(120),
             time_s: Some(0.0012),
             next_failure: "timeout after 10 s".into(),
+            settings: String::new(),
             err: String::new(),
         }];
         let md = render(
@@ -403,6 +407,7 @@ mod tests {
             triangles: None,
             time_s: None,
             next_failure: "error | with pipe".into(),
+            settings: String::new(),
             err: String::new(),
         }];
         let md = render(&[], &max, &["spade".into()], &["spade"], 30.0);
@@ -424,6 +429,7 @@ mod tests {
             triangles: None,
             time_s: None,
             next_failure: String::new(),
+            settings: String::new(),
             err: String::new(),
         })
         .unwrap();

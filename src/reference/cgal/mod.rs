@@ -114,10 +114,9 @@ fn domain(input: &Pslg) -> Cow<'_, Pslg> {
     }
 }
 
-/// The domain of `input` as the bridge's flat arrays: coordinates, segment index pairs, hole
-/// coordinates.
+/// A domain (see `domain`) as the bridge's flat arrays: coordinates, segment index pairs,
+/// hole coordinates.
 fn flatten(input: &Pslg) -> (Vec<f64>, Vec<u32>, Vec<f64>) {
-    let input = domain(input);
     let points = input.points.iter().flatten().copied().collect();
     let segments = input.segments.iter().flatten().copied().collect();
     let holes = input.holes.iter().flatten().copied().collect();
@@ -215,8 +214,10 @@ impl Mesher for Cgal {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let (b, s) = self.criteria(params)?;
+        let domain = domain(input);
+        crate::reference::check_scale(self.name(), &domain)?;
         let start = Instant::now();
-        let (points, segments, holes) = flatten(input);
+        let (points, segments, holes) = flatten(&domain);
         let result = ffi::mesh_delaunay(&points, &segments, &holes, b, s, &limits(&params.budget));
         finish(self.name(), result, start.elapsed())
     }
@@ -253,8 +254,10 @@ impl Mesher for CgalConforming {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        let domain = domain(input);
+        crate::reference::check_scale(self.name(), &domain)?;
         let start = Instant::now();
-        let (points, segments, holes) = flatten(input);
+        let (points, segments, holes) = flatten(&domain);
         let result = ffi::mesh_conforming(&points, &segments, &holes, &limits(&params.budget));
         finish(self.name(), result, start.elapsed())
     }

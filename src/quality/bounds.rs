@@ -43,7 +43,9 @@ pub const BOUND_NAMES: &[&str] = &[
     "triangle",
     "spade",
     "saalfeld",
+    "saalfeld-sec5",
     "lsb",
+    "lsb-plain",
     "valid",
     "delaunay",
     "min-angle=DEG",
@@ -116,14 +118,14 @@ impl Bounds {
                 interior_only_on_segments: false,
                 ..angles(30.0, 90.0)
             },
-            "cgal-conforming" | "saalfeld" => Bounds {
+            "cgal-conforming" | "saalfeld" | "saalfeld-sec5" => Bounds {
                 delaunay: true,
                 ..Bounds::validity(name)
             },
             // Paper 003: plain bisection and the adaptive refinement with rule 4.1 keep half
             // the smallest angle of the initial triangle (Sec. 4); 2/3 needs every quaternary
             // split completed, which only uniform refinement does (Theorem 3.4).
-            "lsb" => Bounds {
+            "lsb" | "lsb-plain" => Bounds {
                 min_angle_over_ancestor: Some(LSB_ADAPTIVE_RATIO),
                 ..Bounds::validity(name)
             },
@@ -205,7 +207,7 @@ mod tests {
         assert!(Bounds::parse("cgal-conforming").expect("cgal-c").delaunay);
         let cgal = Bounds::parse("cgal").expect("cgal");
         assert!(!cgal.delaunay && cgal.min_angle.is_none());
-        for lsb in ["lsb"] {
+        for lsb in ["lsb", "lsb-plain"] {
             let b = Bounds::parse(lsb).expect("lsb");
             assert_eq!(b.min_angle_over_ancestor, Some(0.5));
             assert!(b.conforming && !b.delaunay);

@@ -750,7 +750,11 @@ impl Lsb {
 
 impl Mesher for Lsb {
     fn name(&self) -> &'static str {
-        "lsb"
+        if self.plain {
+            "lsb-plain"
+        } else {
+            "lsb"
+        }
     }
 
     fn version(&self) -> String {

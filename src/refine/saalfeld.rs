@@ -488,7 +488,11 @@ impl Saalfeld {
 
 impl Mesher for Saalfeld {
     fn name(&self) -> &'static str {
-        "saalfeld"
+        if self.constructive {
+            "saalfeld-sec5"
+        } else {
+            "saalfeld"
+        }
     }
 
     fn version(&self) -> String {

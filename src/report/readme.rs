@@ -66,6 +66,13 @@ pub fn render(
     md.push_str("- [`results.csv`](results.csv): one row per data set × mesher, every figure below; a failure is a row with its `err`.\n");
     md.push_str("- [`table1.md`](table1.md): the paper's Table 1 beside ours.\n");
     md.push_str("- [`maxangle.csv`](maxangle.csv): the max-angle protocol's outcome for each reference mesher.\n");
+    md.push_str("- [`seeds.csv`](seeds.csv): triangle counts of the hexagon meshers over ten seeds of each random dataset (the spread behind Table 1's one draw; empty without the max-angle protocol).\n");
+    if meshers.contains(&"lsb") {
+        md.push_str("- [`lsb.csv`](lsb.csv): longest-side bisection's angle descent against Theorem 3.4 (paper 003).\n");
+    }
+    if meshers.contains(&"saalfeld") {
+        md.push_str("- [`saalfeld.csv`](saalfeld.csv): points added by Saalfeld's Sec. 6 iteration, its Sec. 5 construction and CGAL's conforming Delaunay triangulation (paper 002).\n");
+    }
     md.push_str("- `angles-<data set>.svg/.png`, `mesh-<data set>-<mesher>.svg` (and `-zoom.svg`)");
     if art.scaling.is_some() {
         md.push_str(", `scaling.svg/.png`");
@@ -77,7 +84,9 @@ pub fn render(
         md,
         "Our meshers run with default parameters and are checked against the bounds they \
          promise (DESIGN.md \"Checks\": `hex` 43.8979°–90°, radius ratio ≤ 1.20787, shortest \
-         edge ≥ 0.12729·d_min, Delaunay; `hex-simple` 30°–120°; `rhomb` 30°–90°). The \
+         edge ≥ 0.12729·d_min, Delaunay; `hex-simple` 30°–120°; `rhomb` 30°–90°; `saalfeld` \
+         conforming with zero exact Delaunay violations; `lsb` every angle at least half the \
+         smallest angle of the initial triangle it lies in, paper 003 Sec. 4). The \
          reference meshers ({}) are asked for a {}° minimum angle and checked against it.\n",
         facts.references.join(", "),
         facts.reference_request

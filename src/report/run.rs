@@ -57,6 +57,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         .filter(|(n, _)| opts.max_angle && paper_row(n).is_some())
         .collect();
     let lsb_step = usize::from(meshers.iter().any(|m| m.name() == "lsb"));
+    let with_saalfeld = meshers.iter().any(|m| m.name() == "saalfeld");
+    let saalfeld_steps = if with_saalfeld { inputs.len() } else { 0 };
     let seed_steps = inputs
         .iter()
         .filter(|(n, _)| opts.max_angle && datasets::default_seed(n).is_some())
@@ -69,6 +71,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
     let total = (inputs.len() * meshers.len()
         + table_inputs.len() * references.len()
         + lsb_step
+        + saalfeld_steps
         + seed_steps) as u64;
     let mut progress = Progress::new(total);
     let mut rows: Vec<Row> = Vec::new();
@@ -197,6 +200,26 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         )?;
         readme_text.push_str(&super::lsb::render(&lsb_rows));
         progress.finish_step("lsb: Theorem 3.4 on the datasets");
+    }
+    if with_saalfeld {
+        let mut last = String::new();
+        let saalfeld_rows =
+            super::saalfeld::saalfeld_rows(&exe, &inputs, &rows, opts.timeout, |label| {
+                if !last.is_empty() {
+                    progress.finish_step(&last);
+                }
+                progress.start(label);
+                last = label.to_string();
+            });
+        if !last.is_empty() {
+            progress.finish_step(&last);
+        }
+        write_csv(
+            &opts.out.join("saalfeld.csv"),
+            super::saalfeld::SAALFELD_COLUMNS,
+            &saalfeld_rows,
+        )?;
+        readme_text.push_str(&super::saalfeld::render(&saalfeld_rows));
     }
     write_text(&opts.out.join("README.md"), &readme_text)?;
     progress.note(&format!(

@@ -23,6 +23,8 @@ pub struct Picture {
 pub struct Artifacts {
     /// (dataset, file stem) of each angle plot; `.svg` and `.png` exist for each.
     pub angle_plots: Vec<(String, String)>,
+    /// (dataset, notes) on each angle plot, from `plot::angle_notes`.
+    pub angle_notes: Vec<(String, Vec<String>)>,
     pub pictures: Vec<Picture>,
     /// Stem of the scaling plot when scaling data were run.
     pub scaling: Option<String>,
@@ -247,22 +249,33 @@ pub fn render(
     md.push_str("\n## Angle distributions\n\n");
     md.push_str(
         "Each curve is the fraction of all triangle angles in each 1° bin for one mesher, on a \
-         log axis so that both the template meshers' spikes and the refinement meshers' \
-         spread stay visible (empty bins lie on the bottom edge); the dashed vertical lines in the mesher's colour are the bounds it promises. A curve \
-         that starts left of its lower line or ends right of its upper line breaks a bound. \
-         The hexagon meshers' angles cluster at the few angles of their templates (60°, and \
-         43.9°/46.1°/90° for the extended refinement); refinement meshers spread between the \
-         requested minimum and about 120°.\n\n",
+         log axis so that both spikes and spread stay visible (empty bins lie on the bottom \
+         edge); the dashed vertical lines in the mesher's colour are the absolute angle bounds \
+         it promises. A curve that starts left of its lower line or ends right of its upper \
+         line breaks a bound. `saalfeld` and `cgal-conforming` promise no angle and `lsb` only \
+         one relative to its initial triangulation, so they have no lines; their smallest \
+         angles come from the input's Delaunay triangulation. Under each plot, the range and the three fullest bins of each \
+         curve, read from the same histograms, and which curves hide under an identical one.\n\n",
     );
     for (d, stem) in &art.angle_plots {
         let _ = writeln!(md, "### `{d}`\n\n![angles of {d}]({stem}.svg)\n");
+        for (_, notes) in art.angle_notes.iter().filter(|(n, _)| n == d) {
+            for n in notes {
+                let _ = writeln!(md, "- {n}");
+            }
+            if !notes.is_empty() {
+                md.push('\n');
+            }
+        }
     }
 
     md.push_str("## Meshes\n\n");
     md.push_str(
         "In the manner of the paper's Fig. 15: each triangle is coloured by its smallest \
-         angle; the zoomed pictures show where the detail is (the two close points, an end of \
-         the line, the bowl of the R).\n\n",
+         angle (red 0°, yellow 30°, green 60°) and the input points are circled; the \
+         zoomed pictures beside them show where the detail is (the two close points, an end of \
+         the line, the bowl of the R), and a dashed frame in the full picture marks the zoomed \
+         window.\n\n",
     );
     for d in unique(art.pictures.iter().map(|p| p.dataset.as_str())) {
         let _ = writeln!(md, "### `{d}`\n");

@@ -109,7 +109,11 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
             let stem = format!("angles-{name}");
             let title = format!("angles of {name}: fraction per 1° bin, dashed = promised bounds");
             match plot::angle_plot(&opts.out, &stem, &title, &series) {
-                Ok(_) => art.angle_plots.push((name.clone(), stem)),
+                Ok(_) => {
+                    art.angle_plots.push((name.clone(), stem));
+                    art.angle_notes
+                        .push((name.clone(), plot::angle_notes(&series)));
+                }
                 Err(e) => art.problems.push(format!("angle plot of {name}: {e}")),
             }
         }
@@ -573,14 +577,21 @@ fn picture(
     mesh: &TriMesh,
 ) -> Result<Picture> {
     let file = format!("mesh-{dataset}-{mesher}.svg");
+    let zoom = zoom_window(dataset, input);
     let opts = SvgOptions {
         width: 800.0,
         title: Some(format!(
-            "{mesher} on {dataset}: {} triangles",
-            mesh.triangles.len()
+            "{mesher} on {dataset}: {} triangles{}",
+            mesh.triangles.len(),
+            if zoom.is_some() {
+                " (dashed frame: the zoomed detail)"
+            } else {
+                ""
+            }
         )),
         highlight: input.points.clone(),
         zoom: None,
+        frames: zoom.iter().map(|(w, _)| *w).collect(),
     };
     write_svg(&out.join(&file), mesh, &opts)?;
     let mut pic = Picture {
@@ -590,12 +601,13 @@ fn picture(
         zoom_file: None,
         zoom_note: String::new(),
     };
-    if let Some((window, note)) = zoom_window(dataset, input) {
+    if let Some((window, note)) = zoom {
         let zoom_file = format!("mesh-{dataset}-{mesher}-zoom.svg");
         let zopts = SvgOptions {
             width: 500.0,
             title: Some(format!("{mesher} on {dataset}: {note}")),
             zoom: Some(window),
+            frames: Vec::new(),
             ..opts
         };
         write_svg(&out.join(&zoom_file), mesh, &zopts)?;

@@ -257,6 +257,15 @@ pub fn render(
          angles come from the input's Delaunay triangulation. Under each plot, the range and the three fullest bins of each \
          curve, read from the same histograms, and which curves hide under an identical one.\n\n",
     );
+    if rows.iter().any(|r| r.interior_min_angle.is_some()) {
+        md.push_str(
+            "On a PSLG (`imr`) every curve counts every triangle, those at the segments too, \
+             while the hexagon meshers promise their bounds only on the triangles that touch no \
+             segment (paper Sec. 7; see \"What held\"): there their curves cross their lines \
+             without breaking a promise; `interior_min_angle` and `interior_max_angle` in \
+             `results.csv` give the figures the bounds are checked on.\n\n",
+        );
+    }
     for (d, stem) in &art.angle_plots {
         let _ = writeln!(md, "### `{d}`\n\n![angles of {d}]({stem}.svg)\n");
         for (_, notes) in art.angle_notes.iter().filter(|(n, _)| n == d) {
@@ -399,6 +408,32 @@ mod tests {
         let md = render(&[good("close-pair", "hex")], &[], &art, &facts());
         assert!(md.contains("![scaling](scaling.svg)"));
         assert!(!md.contains("`hexmesh report --scaling`"));
+    }
+
+    #[test]
+    fn readme_warns_that_pslg_angle_curves_include_the_near_segment_triangles() {
+        let mut imr = good("imr", "hex");
+        let plain = render(&[imr.clone()], &[], &Artifacts::default(), &facts());
+        assert!(!plain.contains("every curve counts every triangle"));
+        imr.interior_min_angle = Some(43.9);
+        let md = render(&[imr], &[], &Artifacts::default(), &facts());
+        assert!(md.contains("On a PSLG (`imr`) every curve counts every triangle"));
+    }
+
+    #[test]
+    fn readme_lists_angle_notes_under_their_plot() {
+        let art = Artifacts {
+            angle_plots: vec![("plane-100".into(), "angles-plane-100".into())],
+            angle_notes: vec![(
+                "plane-100".into(),
+                vec!["`saalfeld`: identical to `cgal-conforming`'s histogram".into()],
+            )],
+            ..Artifacts::default()
+        };
+        let md = render(&[good("plane-100", "hex")], &[], &art, &facts());
+        assert!(md.contains(
+            "![angles of plane-100](angles-plane-100.svg)\n\n- `saalfeld`: identical to `cgal-conforming`'s histogram\n"
+        ), "{md}");
     }
 
     #[test]

@@ -56,7 +56,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         .iter()
         .filter(|(n, _)| opts.max_angle && paper_row(n).is_some())
         .collect();
-    let lsb_step = usize::from(meshers.iter().any(|m| m.name() == "lsb"));
+    let with_lsb = meshers.iter().any(|m| m.name() == "lsb");
+    let lsb_steps = if with_lsb { 2 * inputs.len() } else { 0 };
     let with_saalfeld = meshers.iter().any(|m| m.name() == "saalfeld");
     let saalfeld_steps = if with_saalfeld { inputs.len() } else { 0 };
     let seed_steps = inputs
@@ -70,7 +71,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         * super::seeds::SEEDS as usize;
     let total = (inputs.len() * meshers.len()
         + table_inputs.len() * references.len()
-        + lsb_step
+        + lsb_steps
         + saalfeld_steps
         + seed_steps) as u64;
     let mut progress = Progress::new(total);
@@ -194,16 +195,24 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         max_angle_timeout_s: opts.max_angle_timeout.as_secs_f64(),
     };
     let mut readme_text = readme::render(&rows, &max_angles, &art, &facts);
-    if meshers.iter().any(|m| m.name() == "lsb") {
-        progress.start("lsb: Theorem 3.4 on the datasets");
-        let lsb_rows = super::lsb::lsb_rows(&inputs);
+    if with_lsb {
+        let mut last = String::new();
+        let lsb_rows = super::lsb::lsb_rows(&exe, &inputs, opts.timeout, |label| {
+            if !last.is_empty() {
+                progress.finish_step(&last);
+            }
+            progress.start(label);
+            last = label.to_string();
+        });
+        if !last.is_empty() {
+            progress.finish_step(&last);
+        }
         write_csv(
             &opts.out.join("lsb.csv"),
             super::lsb::LSB_COLUMNS,
             &lsb_rows,
         )?;
         readme_text.push_str(&super::lsb::render(&lsb_rows));
-        progress.finish_step("lsb: Theorem 3.4 on the datasets");
     }
     if with_saalfeld {
         let mut last = String::new();

@@ -231,6 +231,12 @@ fn strictly_between(a: Point, b: Point, q: Point) -> bool {
     q[0] >= lo_x && q[0] <= hi_x && q[1] >= lo_y && q[1] <= hi_y && q != a && q != b
 }
 
+/// True when one of two exact orientation values is positive and the other negative. Their
+/// product would underflow to zero for coordinates below about 1e-77, and miss the crossing.
+pub(crate) fn opposite_signs(x: f64, y: f64) -> bool {
+    (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0)
+}
+
 /// True when segments s = ab and t = cd meet anywhere but at a shared endpoint.
 fn segments_conflict(s: [u32; 2], t: [u32; 2], a: Point, b: Point, c: Point, d: Point) -> bool {
     let shared = s.iter().filter(|v| t.contains(v)).count();
@@ -252,7 +258,7 @@ fn segments_conflict(s: [u32; 2], t: [u32; 2], a: Point, b: Point, c: Point, d: 
         // Meeting at a vertex: a conflict only if one runs along the other, handled above.
         return false;
     }
-    let proper = o1 * o2 < 0.0 && o3 * o4 < 0.0;
+    let proper = opposite_signs(o1, o2) && opposite_signs(o3, o4);
     let touching = (o1 == 0.0 && strictly_between(a, b, c))
         || (o2 == 0.0 && strictly_between(a, b, d))
         || (o3 == 0.0 && strictly_between(c, d, a))
@@ -315,6 +321,24 @@ mod tests {
             Err(InputError::CrossingSegments {
                 first: 4,
                 second: 5
+            })
+        );
+    }
+
+    #[test]
+    fn crossing_segments_at_a_tiny_scale_are_refused() {
+        // Orientation values of 1e-200 are exact, but their product underflows to zero.
+        let t = 1e-100;
+        let p = Pslg {
+            points: vec![[0.0, 0.0], [t, t], [0.0, t], [t, 0.0]],
+            segments: vec![[0, 1], [2, 3]],
+            ..Pslg::default()
+        };
+        assert_eq!(
+            p.check(),
+            Err(InputError::CrossingSegments {
+                first: 0,
+                second: 1
             })
         );
     }

@@ -21,18 +21,55 @@ pub fn meshers() -> Vec<Box<dyn Mesher>> {
     ]
 }
 
+/// Options of registered meshers, reachable by name (`hexmesh mesh --mesher NAME`,
+/// `report --meshers NAME`) but not run by default: Saalfeld's constructive refinement of
+/// Sec. 5 and plain longest-side bisection, the variants the papers compare against.
+pub fn variants() -> Vec<Box<dyn Mesher>> {
+    vec![
+        Box::new(crate::refine::Saalfeld {
+            constructive: true,
+            ..crate::refine::Saalfeld::default()
+        }),
+        Box::new(crate::refine::Lsb { plain: true }),
+    ]
+}
+
 /// The names of the registered meshers, in report order.
 pub fn mesher_names() -> Vec<&'static str> {
     meshers().iter().map(|m| m.name()).collect()
 }
 
-/// The mesher called `name`.
+/// The mesher or variant called `name`.
 pub fn mesher(name: &str) -> Result<Box<dyn Mesher>> {
     meshers()
         .into_iter()
+        .chain(variants())
         .find(|m| m.name() == name)
         .ok_or_else(|| Error::UnknownMesher {
             name: name.to_string(),
-            known: mesher_names().iter().map(|s| s.to_string()).collect(),
+            known: mesher_names()
+                .into_iter()
+                .chain(variants().iter().map(|m| m.name()))
+                .map(|s| s.to_string())
+                .collect(),
         })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn variants_resolve_by_name_but_are_not_in_the_default_list() {
+        for v in ["saalfeld-sec5", "lsb-plain"] {
+            assert_eq!(mesher(v).expect(v).name(), v);
+            assert!(!mesher_names().contains(&v), "{v} is run by default");
+        }
+        match mesher("no-such") {
+            Err(Error::UnknownMesher { known, .. }) => {
+                assert!(known.iter().any(|k| k == "saalfeld-sec5"), "{known:?}")
+            }
+            other => panic!("{:?}", other.map(|m| m.name())),
+        }
+    }
 }

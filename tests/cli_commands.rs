@@ -23,6 +23,51 @@ fn text(out: &Output) -> String {
 }
 
 #[test]
+fn the_variants_mesh_by_name_and_lsbs_descent_bound_needs_the_input() {
+    for name in ["saalfeld-sec5", "lsb-plain", "lsb"] {
+        let prefix = temp(&format!("imr-{name}"));
+        let p = prefix.to_str().expect("utf-8");
+        let out = hexmesh(&["mesh", "datasets/imr.poly", "--mesher", name, "-o", p]);
+        assert!(out.status.success(), "{name}: {}", text(&out));
+        let out = hexmesh(&[
+            "verify",
+            p,
+            "--input",
+            "datasets/imr.poly",
+            "--bounds",
+            name,
+        ]);
+        assert!(out.status.success(), "{name}:\n{}", text(&out));
+        let shown = text(&out);
+        if name.starts_with("lsb") {
+            let line = shown
+                .lines()
+                .find(|l| l.contains("lsb descent"))
+                .unwrap_or_else(|| panic!("{name}: no descent check in\n{shown}"));
+            assert!(
+                line.ends_with("ok") && line.contains("≥ 0.5000000"),
+                "{line}"
+            );
+            let out = hexmesh(&["verify", p, "--bounds", name]);
+            let line = text(&out)
+                .lines()
+                .find(|l| l.contains("lsb descent"))
+                .map(String::from)
+                .unwrap_or_default();
+            assert!(line.contains("skipped: needs the input"), "{line}");
+        } else {
+            assert!(shown.contains("non-Delaunay edges (exact)"), "{shown}");
+        }
+    }
+    let out = hexmesh(&["meshers"]);
+    assert!(
+        text(&out).contains("saalfeld-sec5    hexmesh"),
+        "{}",
+        text(&out)
+    );
+}
+
+#[test]
 fn every_registered_mesher_meshes_and_verifies_against_its_own_bounds() {
     for name in hexmesh::mesher_names() {
         let prefix = temp(&format!("plane-100-{name}"));

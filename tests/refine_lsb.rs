@@ -257,6 +257,77 @@ fn registered_under_its_name() {
     );
 }
 
+/// `verify --bounds lsb` on the run's mesh passes, and the checker's own ancestor search
+/// (centroid location in the initial triangulation) agrees with the mesher's bookkeeping.
+fn assert_lsb_verdict(input: &Pslg, r: &LsbRun) {
+    let bounds = hexmesh::quality::Bounds::parse("lsb").unwrap();
+    let v = hexmesh::quality::verdict(&r.run.mesh, Some(input), Some(&bounds));
+    assert!(v.passed(), "{v}");
+    let d = hexmesh::quality::descent(&r.initial, &r.run.mesh, 0.5);
+    let located: Vec<u32> = d.parents.iter().map(|p| p.expect("located")).collect();
+    assert_eq!(
+        located, r.parents,
+        "ancestors differ from the mesher's bookkeeping"
+    );
+    let (ratio, _) = d.min_ratio.unwrap();
+    assert!(
+        (ratio - r.min_descent_ratio).abs() <= 1e-9,
+        "{ratio} vs {}",
+        r.min_descent_ratio
+    );
+}
+
+#[test]
+fn tiny_input_angles_keep_half_of_them_and_conform() {
+    for deg in [1.0, 1e-2, 1e-4, 1e-6] {
+        let input = fan(4, deg);
+        for lsb in [MODIFIED, PLAIN] {
+            let r = lsb.refine(&input, &Params::default()).unwrap();
+            assert!(r.run.complete, "{deg}: {:?}", r.run.stop_reason);
+            assert_conforming_refinement(&r);
+            assert_lsb_verdict(&input, &r);
+        }
+    }
+}
+
+#[test]
+fn collinear_points_and_segments_keep_half_the_angle_and_conform() {
+    let input = collinear_pslg(20);
+    for lsb in [MODIFIED, PLAIN] {
+        let r = lsb.refine(&input, &Params::default()).unwrap();
+        assert!(r.run.complete);
+        assert_conforming_refinement(&r);
+        assert_lsb_verdict(&input, &r);
+        for (chain, s) in r.chains.iter().zip(&input.segments) {
+            let (a, b) = (input.points[s[0] as usize], input.points[s[1] as usize]);
+            check_chain(&r.run.mesh, chain, a, b, 1e-12).unwrap();
+        }
+    }
+}
+
+#[test]
+fn verify_fails_a_mesh_with_a_sliver_cut_into_a_fat_initial_triangle() {
+    // The initial triangulation of this equilateral triangle is itself; a point just above
+    // its base makes 2.3° angles, far below half of 60°.
+    let h = 3f64.sqrt() / 2.0;
+    let mut input = Pslg::default();
+    add_loop(&mut input, &[[0.0, 0.0], [1.0, 0.0], [0.5, h]]);
+    let mesh = TriMesh {
+        vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.5, h], [0.5, 0.02]],
+        triangles: vec![[0, 1, 3], [1, 2, 3], [2, 0, 3]],
+    };
+    let bounds = hexmesh::quality::Bounds::parse("lsb").unwrap();
+    let v = hexmesh::quality::verdict(&mesh, Some(&input), Some(&bounds));
+    assert!(!v.passed(), "{v}");
+    let failed: Vec<&str> = v
+        .checks
+        .iter()
+        .filter(|c| c.status == hexmesh::quality::Status::Fail)
+        .map(|c| c.what.as_str())
+        .collect();
+    assert_eq!(failed, ["smallest angle / ancestor's (lsb descent)"]);
+}
+
 /// Random non-degenerate triangles with smallest angle at least `min_deg` degrees.
 fn random_triangle(min_deg: f64) -> impl Strategy<Value = TriMesh> {
     (
@@ -314,6 +385,22 @@ proptest! {
             prop_assert!(r.run.complete);
             assert_conforming_refinement(&r);
             prop_assert!(r.min_descent_ratio >= 0.5 - RATIO_TOL, "ratio {}", r.min_descent_ratio);
+        }
+    }
+
+    #[test]
+    fn adaptive_refinement_of_random_pslgs_keeps_half_the_angle_and_conforms(
+        seed in 0u64..1_000_000, n in 2usize..30, hole in any::<bool>(), plain in any::<bool>()
+    ) {
+        let input = random_pslg(seed, n, 3 * n, hole);
+        let lsb = Lsb { plain };
+        let r = lsb.refine(&input, &Params::default()).unwrap();
+        prop_assert!(r.run.complete);
+        assert_conforming_refinement(&r);
+        assert_lsb_verdict(&input, &r);
+        for (chain, s) in r.chains.iter().zip(&input.segments) {
+            let (a, b) = (input.points[s[0] as usize], input.points[s[1] as usize]);
+            check_chain(&r.run.mesh, chain, a, b, 1e-12).unwrap();
         }
     }
 

@@ -33,7 +33,7 @@ enum Command {
         #[arg(long)]
         scaling: bool,
     },
-    /// List the registered meshers with their versions.
+    /// List the registered meshers with their versions, then the variants reachable by name.
     Meshers,
     /// Mesh a .node/.poly file (or a dataset by name) with one mesher.
     Mesh(MeshArgs),
@@ -192,6 +192,13 @@ fn run(command: Command) -> Result<ExitCode> {
         Command::Meshers => {
             for m in crate::registry::meshers() {
                 println!("{:<16} {}", m.name(), m.version());
+            }
+            for m in crate::registry::variants() {
+                println!(
+                    "{:<16} {} (variant, not in the default report)",
+                    m.name(),
+                    m.version()
+                );
             }
             Ok(ExitCode::SUCCESS)
         }

@@ -23,6 +23,9 @@ pub struct SvgOptions {
     /// Draw only this window, [xmin, ymin, xmax, ymax] in mesh coordinates, clipping to it
     /// (for zoomed insets); `None` fits the whole mesh.
     pub zoom: Option<[f64; 4]>,
+    /// Windows [xmin, ymin, xmax, ymax] in mesh coordinates to outline with a dashed frame,
+    /// e.g. where a zoomed inset of the same mesh looks.
+    pub frames: Vec<[f64; 4]>,
 }
 
 impl Default for SvgOptions {
@@ -32,6 +35,7 @@ impl Default for SvgOptions {
             title: None,
             highlight: Vec::new(),
             zoom: None,
+            frames: Vec::new(),
         }
     }
 }
@@ -40,7 +44,7 @@ impl Default for SvgOptions {
 const BUCKETS: usize = 61;
 const MARGIN: f64 = 10.0;
 const TITLE_HEIGHT: f64 = 24.0;
-const LEGEND_HEIGHT: f64 = 46.0;
+const LEGEND_HEIGHT: f64 = 60.0;
 
 /// Writes `mesh` as an SVG picture (see the module comment).
 pub fn write_svg(path: &Path, mesh: &TriMesh, opts: &SvgOptions) -> Result<()> {
@@ -198,6 +202,24 @@ pub fn write_svg(path: &Path, mesh: &TriMesh, opts: &SvgOptions) -> Result<()> {
         }
         svg.push_str("</g>\n");
     }
+    for f in opts
+        .frames
+        .iter()
+        .filter(|f| f.iter().all(|v| v.is_finite()))
+    {
+        let (xa, ya) = to_px([f[0].max(window[0]), f[3].min(window[3])]);
+        let (xb, yb) = to_px([f[2].min(window[2]), f[1].max(window[1])]);
+        if xb > xa && yb > ya {
+            let _ = writeln!(
+                svg,
+                r##"<rect x="{}" y="{}" width="{}" height="{}" fill="none" stroke="#1f3fbf" stroke-width="1.5" stroke-dasharray="5 3"/>"##,
+                fmt_px(xa),
+                fmt_px(ya),
+                fmt_px((xb - xa).max(3.0)),
+                fmt_px((yb - ya).max(3.0))
+            );
+        }
+    }
     svg.push_str("</g>\n");
     if opts.zoom.is_some() {
         // A frame shows where the inset cuts the mesh.
@@ -249,18 +271,24 @@ fn legend(svg: &mut String, y: f64, width: f64, drawn: usize, smallest: f64) {
             fmt_px(y + 24.0)
         );
     }
+    // Two short lines, so that the caption fits a narrow (zoomed) picture too.
     let figures = if drawn == 0 {
         "no triangles drawn".to_string()
     } else {
-        format!("colour: smallest angle of each triangle; {drawn} triangles drawn, smallest angle {smallest:.2}°")
+        format!("{drawn} triangles drawn, smallest angle {smallest:.2}°")
     };
-    let _ = writeln!(
-        svg,
-        r#"<text x="{}" y="{}">{}</text>"#,
-        fmt_px(MARGIN),
-        fmt_px(y + 38.0),
-        escape(&figures)
-    );
+    for (k, line) in ["colour: smallest angle of each triangle", figures.as_str()]
+        .iter()
+        .enumerate()
+    {
+        let _ = writeln!(
+            svg,
+            r#"<text x="{}" y="{}">{}</text>"#,
+            fmt_px(MARGIN),
+            fmt_px(y + 38.0 + 14.0 * k as f64),
+            escape(line)
+        );
+    }
 }
 
 /// The mesh's bounding box (or the highlighted points' when the mesh is empty), padded by 2%.

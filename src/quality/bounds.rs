@@ -3,7 +3,9 @@
 //! (Sec. 6.1, Fig. 10), radius ratio ≤ 1.20787 (Sec. 6.2), shortest edge ≥ √7/(12√3)·d_min
 //! (Sec. 6.3), Delaunay (Sec. 6.4); on PSLG inputs they hold away from the segments (Sec. 7).
 //! Simple refinement gives [30°, 120°] (Sec. 4); Neugebauer–Diekmann's rhomboidal mesher
-//! [30°, 90°].
+//! [30°, 90°]. Saalfeld's conforming Delaunay triangulation (paper 002) promises the exact
+//! Delaunay property and conformity; longest-side bisection (paper 003) every angle at least
+//! half the smallest angle of the initial triangle it descends from (`quality::descent`).
 
 use serde::Serialize;
 
@@ -23,6 +25,14 @@ pub const HEX_MAX_RADIUS_RATIO: f64 = 1.20787;
 /// Shortest edge over d_min for hex: √7/(12√3) (paper Sec. 6.3).
 pub const HEX_MIN_EDGE_OVER_DMIN: f64 = 0.127_293_769_304_328_9;
 
+/// The descent ratio `lsb` promises (paper 003, Sec. 4): every angle at least half the
+/// smallest angle of the initial triangle it descends from.
+pub const LSB_ADAPTIVE_RATIO: f64 = 0.5;
+
+/// The ratio Theorem 3.4 gives the family T(A, B, C) of a triangle (uniform modified
+/// refinement).
+pub const LSB_FAMILY_RATIO: f64 = 2.0 / 3.0;
+
 /// The bound sets `Bounds::parse` knows, for error messages and `--help`.
 pub const BOUND_NAMES: &[&str] = &[
     "hex",
@@ -33,7 +43,9 @@ pub const BOUND_NAMES: &[&str] = &[
     "triangle",
     "spade",
     "saalfeld",
+    "saalfeld-sec5",
     "lsb",
+    "lsb-plain",
     "valid",
     "delaunay",
     "min-angle=DEG",
@@ -52,6 +64,9 @@ pub struct Bounds {
     pub max_radius_ratio: Option<f64>,
     /// Smallest allowed shortest-edge / d_min.
     pub min_edge_over_dmin: Option<f64>,
+    /// Smallest allowed ratio of a triangle's smallest angle to the smallest angle of the
+    /// triangle of the initial triangulation it lies in (`quality::descent`; needs the input).
+    pub min_angle_over_ancestor: Option<f64>,
     /// Every interior edge passes the exact empty-circle test.
     pub delaunay: bool,
     /// Every input segment is a chain of mesh edges.
@@ -73,6 +88,7 @@ impl Bounds {
             max_angle: None,
             max_radius_ratio: None,
             min_edge_over_dmin: None,
+            min_angle_over_ancestor: None,
             delaunay: false,
             conforming: true,
             single_component: true,
@@ -102,11 +118,18 @@ impl Bounds {
                 interior_only_on_segments: false,
                 ..angles(30.0, 90.0)
             },
-            "cgal-conforming" | "saalfeld" => Bounds {
+            "cgal-conforming" | "saalfeld" | "saalfeld-sec5" => Bounds {
                 delaunay: true,
                 ..Bounds::validity(name)
             },
-            "cgal" | "triangle" | "spade" | "lsb" | "valid" => Bounds::validity(name),
+            // Paper 003: plain bisection and the adaptive refinement with rule 4.1 keep half
+            // the smallest angle of the initial triangle (Sec. 4); 2/3 needs every quaternary
+            // split completed, which only uniform refinement does (Theorem 3.4).
+            "lsb" | "lsb-plain" => Bounds {
+                min_angle_over_ancestor: Some(LSB_ADAPTIVE_RATIO),
+                ..Bounds::validity(name)
+            },
+            "cgal" | "triangle" | "spade" | "valid" => Bounds::validity(name),
             "delaunay" => Bounds {
                 delaunay: true,
                 conforming: false,
@@ -184,6 +207,12 @@ mod tests {
         assert!(Bounds::parse("cgal-conforming").expect("cgal-c").delaunay);
         let cgal = Bounds::parse("cgal").expect("cgal");
         assert!(!cgal.delaunay && cgal.min_angle.is_none());
+        for lsb in ["lsb", "lsb-plain"] {
+            let b = Bounds::parse(lsb).expect("lsb");
+            assert_eq!(b.min_angle_over_ancestor, Some(0.5));
+            assert!(b.conforming && !b.delaunay);
+        }
+        assert!(cgal.min_angle_over_ancestor.is_none());
     }
 
     #[test]

@@ -5,6 +5,8 @@
 pub mod bounds;
 /// d_min, the closest pair of input points, in O(n log n).
 pub mod closest_pair;
+/// Longest-side bisection's descent bound: each triangle against the initial one it lies in.
+pub mod descent;
 /// Angles, radius ratio, edge ratio, shortest edge / d_min, Delaunay counts.
 pub mod metrics;
 /// Every structural invariant a mesh must meet, each broken one named.
@@ -14,9 +16,10 @@ pub mod verdict;
 
 pub use bounds::{
     Bounds, ANGLE_SLACK_DEG, BOUND_NAMES, HEX_MAX_RADIUS_RATIO, HEX_MIN_ANGLE_DEG,
-    HEX_MIN_EDGE_OVER_DMIN,
+    HEX_MIN_EDGE_OVER_DMIN, LSB_ADAPTIVE_RATIO, LSB_FAMILY_RATIO,
 };
 pub use closest_pair::{closest_pair, ClosestPair};
+pub use descent::{descent, Descent};
 pub use metrics::{
     angle_at, metrics, metrics_split, triangle_shape, DelaunayEdge, Metrics, SplitMetrics,
     TriangleShape, Worst, DELAUNAY_ANGLE_SLACK_DEG,

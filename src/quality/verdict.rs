@@ -9,6 +9,7 @@ use serde::Serialize;
 use crate::geom::Point;
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::bounds::{Bounds, ANGLE_SLACK_DEG};
+use crate::quality::descent::descent;
 use crate::quality::metrics::{metrics, metrics_split, Metrics, SplitMetrics, Worst};
 use crate::quality::validate::{validate, ValidateOptions, Violation};
 
@@ -189,6 +190,9 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 });
             }
         }
+        if let Some(r) = b.min_angle_over_ancestor {
+            checks.push(descent_check(mesh, input, r));
+        }
         if b.delaunay {
             let count = m.delaunay_violations;
             let failed = count > 0;
@@ -214,6 +218,57 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         checks,
         metrics: all,
         split,
+    }
+}
+
+/// The descent bound of longest-side bisection (`quality::descent`): every triangle's
+/// smallest angle at least `r` times that of the initial triangle (the constrained Delaunay
+/// triangulation of the input's domain, as `lsb` starts from) it lies in, less the angle slack.
+fn descent_check(mesh: &TriMesh, input: Option<&Pslg>, r: f64) -> Check {
+    let what = "smallest angle / ancestor's (lsb descent)".to_string();
+    let skipped = |note: String| Check {
+        what: what.clone(),
+        value: None,
+        relation: "≥".to_string(),
+        limit: r,
+        status: Status::Skipped,
+        worst: None,
+        note: Some(note),
+    };
+    let Some(input) = input else {
+        return skipped("needs the input (--input) to build the initial triangulation".into());
+    };
+    let initial = match crate::refine::Lsb::initial(input) {
+        Ok((initial, _)) => initial,
+        Err(e) => return skipped(format!("no initial triangulation: {e}")),
+    };
+    let d = descent(&initial, mesh, r);
+    let corners = |t: usize, value: f64| WorstTriangle {
+        triangle: t,
+        corners: mesh.corners(t),
+        value,
+    };
+    let (status, worst, note) = match (d.first_unlocated, d.min_margin) {
+        (Some(t), _) => (
+            Status::Fail,
+            Some(corners(t, f64::NAN)),
+            Some("a triangle lies outside the initial triangulation".to_string()),
+        ),
+        (None, Some((margin, t))) if margin < -ANGLE_SLACK_DEG => (
+            Status::Fail,
+            Some(corners(t, d.min_ratio.map_or(f64::NAN, |(v, _)| v))),
+            None,
+        ),
+        _ => (Status::Ok, None, None),
+    };
+    Check {
+        what,
+        value: d.min_ratio.map(|(v, _)| v),
+        relation: "≥".to_string(),
+        limit: r,
+        status,
+        worst,
+        note,
     }
 }
 

@@ -624,6 +624,34 @@ pub fn family(initial: &TriMesh, levels: u32, plain: bool) -> (TriMesh, Vec<u32>
     (soup, parents)
 }
 
+/// Theorem 3.4's quantity over the family T(A, B, C) of every triangle of `initial`, `levels`
+/// deep, without building the soup: the smallest ratio of a descendant's smallest angle to its
+/// ancestor's. Memory is one triangle's family (at most 4^levels triangles), so it runs on a
+/// million-triangle triangulation too. Infinity when `initial` has no triangles.
+pub fn family_min_ratio(initial: &TriMesh, levels: u32, plain: bool) -> f64 {
+    let smallest = |c: [Point; 3]| {
+        (0..3)
+            .map(|k| angle_at(c[k], c[(k + 1) % 3], c[(k + 2) % 3]))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let mut ratio = f64::INFINITY;
+    for t in 0..initial.triangles.len() {
+        let root = initial.corners(t);
+        let base = smallest(root);
+        let mut gen = vec![root];
+        for _ in 0..levels {
+            gen = gen
+                .into_iter()
+                .flat_map(|x| split_alone(x, plain))
+                .collect();
+        }
+        for tri in gen {
+            ratio = ratio.min(smallest(tri) / base);
+        }
+    }
+    ratio
+}
+
 impl Lsb {
     /// Refines `mesh` uniformly: `levels` times, every triangle is split once (Definition 3.2
     /// for the modified rule, with Rivara propagation keeping the mesh conforming).
@@ -750,7 +778,11 @@ impl Lsb {
 
 impl Mesher for Lsb {
     fn name(&self) -> &'static str {
-        "lsb"
+        if self.plain {
+            "lsb-plain"
+        } else {
+            "lsb"
+        }
     }
 
     fn version(&self) -> String {

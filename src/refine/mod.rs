@@ -11,7 +11,7 @@
 pub mod lsb;
 pub mod saalfeld;
 
-pub use lsb::{family, lsb_descent_check, min_angle, Lsb, LsbRun, Target};
+pub use lsb::{family, family_min_ratio, lsb_descent_check, min_angle, Lsb, LsbRun, Target};
 pub use saalfeld::{ConformingRun, Saalfeld};
 
 use std::collections::{HashMap, HashSet};

@@ -37,7 +37,7 @@ use super::{
 };
 use crate::error::Result;
 use crate::geom::{dist, orient2d, Point};
-use crate::mesh::{Pslg, TriMesh};
+use crate::mesh::{opposite_signs, Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
 
 /// Without a vertex budget, the constructive option refuses to place more points than this
@@ -161,7 +161,7 @@ impl State {
 fn crossing_point(p: Point, q: Point, u: Point, w: Point) -> Option<Point> {
     let (op, oq) = (orient2d(u, w, p), orient2d(u, w, q));
     let (ou, ow) = (orient2d(p, q, u), orient2d(p, q, w));
-    if !(op * oq < 0.0 && ou * ow < 0.0) {
+    if !(opposite_signs(op, oq) && opposite_signs(ou, ow)) {
         return None;
     }
     let t = op / (op - oq);
@@ -488,7 +488,11 @@ impl Saalfeld {
 
 impl Mesher for Saalfeld {
     fn name(&self) -> &'static str {
-        "saalfeld"
+        if self.constructive {
+            "saalfeld-sec5"
+        } else {
+            "saalfeld"
+        }
     }
 
     fn version(&self) -> String {

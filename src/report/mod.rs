@@ -8,6 +8,7 @@
 //! - `plot`: angle distributions and scaling plots (SVG + PNG).
 //! - `readme`: the generated `README.md`.
 //! - `progress`: a progress bar on a terminal, plain lines otherwise.
+//! - `lsb`, `saalfeld`: the comparisons papers 003 and 002 make (angle descent, points added).
 //! - `run`: the cases, isolated and checked; `run_report` ties everything together.
 
 pub mod lsb;
@@ -16,6 +17,7 @@ pub mod progress;
 pub mod readme;
 pub mod row;
 mod run;
+pub mod saalfeld;
 pub mod seeds;
 pub mod stats;
 pub mod table1;
@@ -104,6 +106,7 @@ pub fn is_generated_file(name: &str) -> bool {
         "results.csv",
         "maxangle.csv",
         "lsb.csv",
+        "saalfeld.csv",
         "seeds.csv",
         "table1.md",
         "README.md",

@@ -104,6 +104,54 @@ impl AngleSeries {
     }
 }
 
+/// What a reader should find in one angle plot, in words, from the same histograms: for each
+/// mesher the range of its occupied bins and its three fullest bins with their shares, and the
+/// curves hidden under an identical one. Bin i is [i°, i+1°).
+pub fn angle_notes(series: &[AngleSeries]) -> Vec<String> {
+    let mut notes = Vec::new();
+    for (k, s) in series.iter().enumerate() {
+        let total: u64 = s.histogram.iter().sum();
+        if total == 0 {
+            continue;
+        }
+        if let Some(first) = series[..k].iter().find(|o| o.histogram == s.histogram) {
+            notes.push(format!(
+                "`{}`: identical to `{}`'s histogram; its curve lies under that one",
+                s.mesher, first.mesher
+            ));
+            continue;
+        }
+        let occupied = |i: &usize| s.histogram[*i] > 0;
+        let (Some(lo), Some(hi)) = (
+            (0..s.histogram.len()).find(occupied),
+            (0..s.histogram.len()).rev().find(occupied),
+        ) else {
+            continue;
+        };
+        let mut order: Vec<usize> = (0..s.histogram.len()).filter(occupied).collect();
+        order.sort_by(|&a, &b| s.histogram[b].cmp(&s.histogram[a]).then(a.cmp(&b)));
+        let top: Vec<String> = order
+            .iter()
+            .take(3)
+            .map(|&i| {
+                format!(
+                    "{i}–{}° ({:.1} %)",
+                    i + 1,
+                    100.0 * s.histogram[i] as f64 / total as f64
+                )
+            })
+            .collect();
+        notes.push(format!(
+            "`{}`: angles from the {lo}–{}° bin to the {hi}–{}° bin; fullest bins {}",
+            s.mesher,
+            lo + 1,
+            hi + 1,
+            top.join(", ")
+        ));
+    }
+    notes
+}
+
 /// One mesher's line in the scaling plot: (input points, seconds, triangles) per dataset.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ScalingSeries {
@@ -385,6 +433,41 @@ mod tests {
             bounds: vec![],
         };
         assert!(z.fractions().iter().all(|&v| v == 0.0));
+    }
+
+    #[test]
+    fn angle_notes_give_range_fullest_bins_and_hidden_curves() {
+        let mut h = vec![0u64; 180];
+        h[43] = 1;
+        h[60] = 6;
+        h[45] = 2;
+        h[90] = 1;
+        let series = vec![
+            AngleSeries {
+                mesher: "saalfeld".into(),
+                histogram: h.clone(),
+                bounds: vec![],
+            },
+            AngleSeries {
+                mesher: "cgal-conforming".into(),
+                histogram: h,
+                bounds: vec![],
+            },
+            AngleSeries {
+                mesher: "empty".into(),
+                histogram: vec![0; 180],
+                bounds: vec![],
+            },
+        ];
+        let notes = angle_notes(&series);
+        assert_eq!(
+            notes,
+            [
+                "`saalfeld`: angles from the 43–44° bin to the 90–91° bin; fullest bins \
+                 60–61° (60.0 %), 45–46° (20.0 %), 43–44° (10.0 %)",
+                "`cgal-conforming`: identical to `saalfeld`'s histogram; its curve lies under that one",
+            ]
+        );
     }
 
     #[test]

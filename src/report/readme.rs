@@ -23,6 +23,8 @@ pub struct Picture {
 pub struct Artifacts {
     /// (dataset, file stem) of each angle plot; `.svg` and `.png` exist for each.
     pub angle_plots: Vec<(String, String)>,
+    /// (dataset, notes) on each angle plot, from `plot::angle_notes`.
+    pub angle_notes: Vec<(String, Vec<String>)>,
     pub pictures: Vec<Picture>,
     /// Stem of the scaling plot when scaling data were run.
     pub scaling: Option<String>,
@@ -66,6 +68,13 @@ pub fn render(
     md.push_str("- [`results.csv`](results.csv): one row per data set × mesher, every figure below; a failure is a row with its `err`.\n");
     md.push_str("- [`table1.md`](table1.md): the paper's Table 1 beside ours.\n");
     md.push_str("- [`maxangle.csv`](maxangle.csv): the max-angle protocol's outcome for each reference mesher.\n");
+    md.push_str("- [`seeds.csv`](seeds.csv): triangle counts of the hexagon meshers over ten seeds of each random dataset (the spread behind Table 1's one draw; empty without the max-angle protocol).\n");
+    if meshers.contains(&"lsb") {
+        md.push_str("- [`lsb.csv`](lsb.csv): longest-side bisection's angle descent against Theorem 3.4 (paper 003).\n");
+    }
+    if meshers.contains(&"saalfeld") {
+        md.push_str("- [`saalfeld.csv`](saalfeld.csv): points added by Saalfeld's Sec. 6 iteration, its Sec. 5 construction and CGAL's conforming Delaunay triangulation (paper 002).\n");
+    }
     md.push_str("- `angles-<data set>.svg/.png`, `mesh-<data set>-<mesher>.svg` (and `-zoom.svg`)");
     if art.scaling.is_some() {
         md.push_str(", `scaling.svg/.png`");
@@ -77,7 +86,9 @@ pub fn render(
         md,
         "Our meshers run with default parameters and are checked against the bounds they \
          promise (DESIGN.md \"Checks\": `hex` 43.8979°–90°, radius ratio ≤ 1.20787, shortest \
-         edge ≥ 0.12729·d_min, Delaunay; `hex-simple` 30°–120°; `rhomb` 30°–90°). The \
+         edge ≥ 0.12729·d_min, Delaunay; `hex-simple` 30°–120°; `rhomb` 30°–90°; `saalfeld` \
+         conforming with zero exact Delaunay violations; `lsb` every angle at least half the \
+         smallest angle of the initial triangle it lies in, paper 003 Sec. 4). The \
          reference meshers ({}) are asked for a {}° minimum angle and checked against it.\n",
         facts.references.join(", "),
         facts.reference_request
@@ -238,22 +249,42 @@ pub fn render(
     md.push_str("\n## Angle distributions\n\n");
     md.push_str(
         "Each curve is the fraction of all triangle angles in each 1° bin for one mesher, on a \
-         log axis so that both the template meshers' spikes and the refinement meshers' \
-         spread stay visible (empty bins lie on the bottom edge); the dashed vertical lines in the mesher's colour are the bounds it promises. A curve \
-         that starts left of its lower line or ends right of its upper line breaks a bound. \
-         The hexagon meshers' angles cluster at the few angles of their templates (60°, and \
-         43.9°/46.1°/90° for the extended refinement); refinement meshers spread between the \
-         requested minimum and about 120°.\n\n",
+         log axis so that both spikes and spread stay visible (empty bins lie on the bottom \
+         edge); the dashed vertical lines in the mesher's colour are the absolute angle bounds \
+         it promises. A curve that starts left of its lower line or ends right of its upper \
+         line breaks a bound. `saalfeld` and `cgal-conforming` promise no angle and `lsb` only \
+         one relative to its initial triangulation, so they have no lines; their smallest \
+         angles come from the input's Delaunay triangulation. Under each plot, the range and the three fullest bins of each \
+         curve, read from the same histograms, and which curves hide under an identical one.\n\n",
     );
+    if rows.iter().any(|r| r.interior_min_angle.is_some()) {
+        md.push_str(
+            "On a PSLG (`imr`) every curve counts every triangle, those at the segments too, \
+             while the hexagon meshers promise their bounds only on the triangles that touch no \
+             segment (paper Sec. 7; see \"What held\"): there their curves cross their lines \
+             without breaking a promise; `interior_min_angle` and `interior_max_angle` in \
+             `results.csv` give the figures the bounds are checked on.\n\n",
+        );
+    }
     for (d, stem) in &art.angle_plots {
         let _ = writeln!(md, "### `{d}`\n\n![angles of {d}]({stem}.svg)\n");
+        for (_, notes) in art.angle_notes.iter().filter(|(n, _)| n == d) {
+            for n in notes {
+                let _ = writeln!(md, "- {n}");
+            }
+            if !notes.is_empty() {
+                md.push('\n');
+            }
+        }
     }
 
     md.push_str("## Meshes\n\n");
     md.push_str(
         "In the manner of the paper's Fig. 15: each triangle is coloured by its smallest \
-         angle; the zoomed pictures show where the detail is (the two close points, an end of \
-         the line, the bowl of the R).\n\n",
+         angle (red 0°, yellow 30°, green 60°) and the input points are circled; the \
+         zoomed pictures beside them show where the detail is (the two close points, an end of \
+         the line, the bowl of the R), and a dashed frame in the full picture marks the zoomed \
+         window.\n\n",
     );
     for d in unique(art.pictures.iter().map(|p| p.dataset.as_str())) {
         let _ = writeln!(md, "### `{d}`\n");
@@ -377,6 +408,32 @@ mod tests {
         let md = render(&[good("close-pair", "hex")], &[], &art, &facts());
         assert!(md.contains("![scaling](scaling.svg)"));
         assert!(!md.contains("`hexmesh report --scaling`"));
+    }
+
+    #[test]
+    fn readme_warns_that_pslg_angle_curves_include_the_near_segment_triangles() {
+        let mut imr = good("imr", "hex");
+        let plain = render(&[imr.clone()], &[], &Artifacts::default(), &facts());
+        assert!(!plain.contains("every curve counts every triangle"));
+        imr.interior_min_angle = Some(43.9);
+        let md = render(&[imr], &[], &Artifacts::default(), &facts());
+        assert!(md.contains("On a PSLG (`imr`) every curve counts every triangle"));
+    }
+
+    #[test]
+    fn readme_lists_angle_notes_under_their_plot() {
+        let art = Artifacts {
+            angle_plots: vec![("plane-100".into(), "angles-plane-100".into())],
+            angle_notes: vec![(
+                "plane-100".into(),
+                vec!["`saalfeld`: identical to `cgal-conforming`'s histogram".into()],
+            )],
+            ..Artifacts::default()
+        };
+        let md = render(&[good("plane-100", "hex")], &[], &art, &facts());
+        assert!(md.contains(
+            "![angles of plane-100](angles-plane-100.svg)\n\n- `saalfeld`: identical to `cgal-conforming`'s histogram\n"
+        ), "{md}");
     }
 
     #[test]

@@ -56,7 +56,10 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         .iter()
         .filter(|(n, _)| opts.max_angle && paper_row(n).is_some())
         .collect();
-    let lsb_step = usize::from(meshers.iter().any(|m| m.name() == "lsb"));
+    let with_lsb = meshers.iter().any(|m| m.name() == "lsb");
+    let lsb_steps = if with_lsb { 2 * inputs.len() } else { 0 };
+    let with_saalfeld = meshers.iter().any(|m| m.name() == "saalfeld");
+    let saalfeld_steps = if with_saalfeld { inputs.len() } else { 0 };
     let seed_steps = inputs
         .iter()
         .filter(|(n, _)| opts.max_angle && datasets::default_seed(n).is_some())
@@ -68,7 +71,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         * super::seeds::SEEDS as usize;
     let total = (inputs.len() * meshers.len()
         + table_inputs.len() * references.len()
-        + lsb_step
+        + lsb_steps
+        + saalfeld_steps
         + seed_steps) as u64;
     let mut progress = Progress::new(total);
     let mut rows: Vec<Row> = Vec::new();
@@ -106,7 +110,11 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
             let stem = format!("angles-{name}");
             let title = format!("angles of {name}: fraction per 1° bin, dashed = promised bounds");
             match plot::angle_plot(&opts.out, &stem, &title, &series) {
-                Ok(_) => art.angle_plots.push((name.clone(), stem)),
+                Ok(_) => {
+                    art.angle_plots.push((name.clone(), stem));
+                    art.angle_notes
+                        .push((name.clone(), plot::angle_notes(&series)));
+                }
                 Err(e) => art.problems.push(format!("angle plot of {name}: {e}")),
             }
         }
@@ -187,16 +195,44 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         max_angle_timeout_s: opts.max_angle_timeout.as_secs_f64(),
     };
     let mut readme_text = readme::render(&rows, &max_angles, &art, &facts);
-    if meshers.iter().any(|m| m.name() == "lsb") {
-        progress.start("lsb: Theorem 3.4 on the datasets");
-        let lsb_rows = super::lsb::lsb_rows(&inputs);
+    if with_lsb {
+        let mut last = String::new();
+        let lsb_rows = super::lsb::lsb_rows(&exe, &inputs, opts.timeout, |label| {
+            if !last.is_empty() {
+                progress.finish_step(&last);
+            }
+            progress.start(label);
+            last = label.to_string();
+        });
+        if !last.is_empty() {
+            progress.finish_step(&last);
+        }
         write_csv(
             &opts.out.join("lsb.csv"),
             super::lsb::LSB_COLUMNS,
             &lsb_rows,
         )?;
         readme_text.push_str(&super::lsb::render(&lsb_rows));
-        progress.finish_step("lsb: Theorem 3.4 on the datasets");
+    }
+    if with_saalfeld {
+        let mut last = String::new();
+        let saalfeld_rows =
+            super::saalfeld::saalfeld_rows(&exe, &inputs, &rows, opts.timeout, |label| {
+                if !last.is_empty() {
+                    progress.finish_step(&last);
+                }
+                progress.start(label);
+                last = label.to_string();
+            });
+        if !last.is_empty() {
+            progress.finish_step(&last);
+        }
+        write_csv(
+            &opts.out.join("saalfeld.csv"),
+            super::saalfeld::SAALFELD_COLUMNS,
+            &saalfeld_rows,
+        )?;
+        readme_text.push_str(&super::saalfeld::render(&saalfeld_rows));
     }
     write_text(&opts.out.join("README.md"), &readme_text)?;
     progress.note(&format!(
@@ -556,14 +592,21 @@ fn picture(
     mesh: &TriMesh,
 ) -> Result<Picture> {
     let file = format!("mesh-{dataset}-{mesher}.svg");
+    let zoom = zoom_window(dataset, input);
     let opts = SvgOptions {
         width: 800.0,
         title: Some(format!(
-            "{mesher} on {dataset}: {} triangles",
-            mesh.triangles.len()
+            "{mesher} on {dataset}: {} triangles{}",
+            mesh.triangles.len(),
+            if zoom.is_some() {
+                " (dashed frame: the zoomed detail)"
+            } else {
+                ""
+            }
         )),
         highlight: input.points.clone(),
         zoom: None,
+        frames: zoom.iter().map(|(w, _)| *w).collect(),
     };
     write_svg(&out.join(&file), mesh, &opts)?;
     let mut pic = Picture {
@@ -573,12 +616,13 @@ fn picture(
         zoom_file: None,
         zoom_note: String::new(),
     };
-    if let Some((window, note)) = zoom_window(dataset, input) {
+    if let Some((window, note)) = zoom {
         let zoom_file = format!("mesh-{dataset}-{mesher}-zoom.svg");
         let zopts = SvgOptions {
             width: 500.0,
             title: Some(format!("{mesher} on {dataset}: {note}")),
             zoom: Some(window),
+            frames: Vec::new(),
             ..opts
         };
         write_svg(&out.join(&zoom_file), mesh, &zopts)?;

@@ -196,3 +196,137 @@ pub fn random_points(n: usize, seed: u64) -> Vec<Point> {
     };
     (0..n).map(|_| [next(), next()]).collect()
 }
+
+/// A random PSLG in the unit square: the square's outline, `n` random interior points, and
+/// up to `tries` random segments between them, each kept only if the input check accepts it
+/// (no crossing, no overlap, no point inside a segment). Dangling segments, chains and
+/// closed cycles all occur. With `hole`, the square [0.4, 0.6]² is a hole (points inside it
+/// are left out: they would lie outside the domain).
+pub fn random_pslg(seed: u64, n: usize, tries: usize, hole: bool) -> Pslg {
+    let mut u = random_points(2 * n + 2 * tries, seed).into_iter().flatten();
+    let mut next = move || u.next().unwrap_or(0.5);
+    let mut p = Pslg::default();
+    add_loop(&mut p, &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    if hole {
+        add_loop(&mut p, &[[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]]);
+        p.holes.push([0.5, 0.5]);
+    }
+    for _ in 0..n {
+        let q = [0.01 + 0.98 * next(), 0.01 + 0.98 * next()];
+        if hole && (0.39..0.61).contains(&q[0]) && (0.39..0.61).contains(&q[1]) {
+            continue;
+        }
+        p.points.push(q);
+        if p.check().is_err() {
+            p.points.pop();
+        }
+    }
+    let m = p.points.len();
+    for _ in 0..tries {
+        let a = ((next() * m as f64) as usize).min(m - 1) as u32;
+        let b = ((next() * m as f64) as usize).min(m - 1) as u32;
+        if a == b {
+            continue;
+        }
+        // A segment between two of the hole's corners would cut the hole and put its seed
+        // on a segment: which side is removed would then be up to the mesher.
+        let mid = [
+            (p.points[a as usize][0] + p.points[b as usize][0]) / 2.0,
+            (p.points[a as usize][1] + p.points[b as usize][1]) / 2.0,
+        ];
+        if hole && (0.4..=0.6).contains(&mid[0]) && (0.4..=0.6).contains(&mid[1]) {
+            continue;
+        }
+        p.segments.push([a, b]);
+        if p.check().is_err() {
+            p.segments.pop();
+        }
+    }
+    p
+}
+
+/// A fan of `k` segments from (0.1, 0.1) inside the square [0, 2]², consecutive ones `deg`
+/// degrees apart: input angles as small as f64 lets them be.
+pub fn fan(k: usize, deg: f64) -> Pslg {
+    let mut p = Pslg::default();
+    add_loop(&mut p, &[[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]]);
+    let o = p.points.len() as u32;
+    p.points.push([0.1, 0.1]);
+    for i in 0..k {
+        let t = (10.0 + i as f64 * deg).to_radians();
+        p.points.push([0.1 + 1.8 * t.cos(), 0.1 + 1.8 * t.sin()]);
+        p.segments.push([o, o + 1 + i as u32]);
+    }
+    p
+}
+
+/// Collinear points and segments: points on the line y = 0.3 inside the unit square, every
+/// other gap a segment, plus points on the same line's extension outside the segments and
+/// a column of collinear points on x = 0.7 crossing nothing.
+pub fn collinear_pslg(k: usize) -> Pslg {
+    let mut p = Pslg::default();
+    add_loop(&mut p, &[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+    let base = p.points.len() as u32;
+    for i in 0..k {
+        p.points.push([0.05 + 0.6 * i as f64 / k as f64, 0.3]);
+    }
+    for i in (0..k.saturating_sub(1)).step_by(2) {
+        p.segments.push([base + i as u32, base + i as u32 + 1]);
+    }
+    for i in 0..k {
+        p.points.push([0.7, 0.05 + 0.9 * i as f64 / k as f64]);
+    }
+    p
+}
+
+/// The smallest angle, in degrees, between two segments of `p` that share an endpoint
+/// (180° when no two do).
+pub fn smallest_segment_angle(p: &Pslg) -> f64 {
+    let mut best: f64 = 180.0;
+    for (i, s) in p.segments.iter().enumerate() {
+        for t in &p.segments[i + 1..] {
+            let Some(&apex) = s.iter().find(|v| t.contains(v)) else {
+                continue;
+            };
+            let other = |x: &[u32; 2]| if x[0] == apex { x[1] } else { x[0] };
+            let (o, a, b) = (
+                p.points[apex as usize],
+                p.points[other(s) as usize],
+                p.points[other(t) as usize],
+            );
+            let (u, v) = ([a[0] - o[0], a[1] - o[1]], [b[0] - o[0], b[1] - o[1]]);
+            let ang = (u[0] * v[1] - u[1] * v[0])
+                .abs()
+                .atan2(u[0] * v[0] + u[1] * v[1])
+                .to_degrees();
+            best = best.min(ang);
+        }
+    }
+    best
+}
+
+/// The input's smallest feature, relative: the smallest of the angles between segments that
+/// share an endpoint (radians) and the distances from a point to a segment it is not on,
+/// over that segment's length.
+pub fn smallest_feature(p: &Pslg) -> f64 {
+    let mut f = smallest_segment_angle(p).to_radians();
+    for (i, &q) in p.points.iter().enumerate() {
+        for s in &p.segments {
+            if s.contains(&(i as u32)) {
+                continue;
+            }
+            let (a, b) = (p.points[s[0] as usize], p.points[s[1] as usize]);
+            let l = dist(a, b);
+            let t = ((q[0] - a[0]) * (b[0] - a[0]) + (q[1] - a[1]) * (b[1] - a[1])) / (l * l);
+            let d = if t <= 0.0 {
+                dist(q, a)
+            } else if t >= 1.0 {
+                dist(q, b)
+            } else {
+                orient2d(a, b, q).abs() / l
+            };
+            f = f.min(d / l);
+        }
+    }
+    f
+}

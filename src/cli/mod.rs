@@ -24,7 +24,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Write the paper's datasets as Triangle .node/.poly files.
+    /// Write the paper's datasets as Triangle .node/.poly files, and the PSLG examples
+    /// (pslg-holes, pslg-wedge-5, pslg-slit, pslg-nested, pslg-short-long) as .poly files.
     Datasets {
         /// Output directory.
         #[arg(long, default_value = "datasets")]
@@ -93,7 +94,7 @@ struct FuzzArgs {
 
 #[derive(Args)]
 struct MaxAngleArgs {
-    /// A Triangle .node or .poly file, or the name of a dataset.
+    /// A Triangle .node or .poly file, or the name of a dataset or PSLG example.
     input: String,
     /// The mesher (see `hexmesh meshers`).
     #[arg(long)]
@@ -114,7 +115,8 @@ struct MaxAngleArgs {
 
 #[derive(Args)]
 struct MeshArgs {
-    /// A Triangle .node or .poly file, or the name of a dataset (see `hexmesh datasets`).
+    /// A Triangle .node or .poly file, or the name of a dataset or PSLG example (see
+    /// `hexmesh datasets`).
     input: String,
     /// The mesher (see `hexmesh meshers`).
     #[arg(long)]
@@ -154,8 +156,9 @@ struct MeshArgs {
 struct VerifyArgs {
     /// The mesh: PREFIX.node and PREFIX.ele.
     prefix: PathBuf,
-    /// The input the mesh was made from (.node/.poly or a dataset name): every input point must
-    /// be a vertex, and every segment a chain of edges where the bounds ask for conformity.
+    /// The input the mesh was made from (.node/.poly, or a dataset or PSLG example name): every
+    /// input point must be a vertex, and every segment a chain of edges where the bounds ask
+    /// for conformity.
     #[arg(long)]
     input: Option<String>,
     /// A mesher's name, `delaunay`, or `min-angle=DEG`. Without it, validity only.
@@ -223,7 +226,7 @@ fn run(command: Command) -> Result<ExitCode> {
     }
 }
 
-/// Reads INPUT: a file when it exists or has an extension, else a dataset name.
+/// Reads INPUT: a file when it exists or has an extension, else a dataset or PSLG example name.
 fn load_input(input: &str) -> Result<Pslg> {
     let path = Path::new(input);
     if path.exists() || path.extension().is_some() {
@@ -238,11 +241,14 @@ fn datasets(out: &Path, scaling: bool) -> Result<ExitCode> {
         path: out.to_path_buf(),
         source,
     })?;
-    let names = crate::datasets::SMALL.iter().chain(if scaling {
-        crate::datasets::SCALING
-    } else {
-        &[]
-    });
+    let names = crate::datasets::SMALL
+        .iter()
+        .chain(crate::datasets::PSLG_EXAMPLES)
+        .chain(if scaling {
+            crate::datasets::SCALING
+        } else {
+            &[]
+        });
     for name in names {
         let pslg = crate::datasets::by_name(name)?;
         let path = out.join(crate::datasets::file_name(name)?);

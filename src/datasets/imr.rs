@@ -128,7 +128,7 @@ fn arc(radius: f64, from_deg: f64, to_deg: f64, chords: usize) -> Vec<Point> {
 /// divisions, so every machine gets the same bits (the committed hashes depend on it). For
 /// |x| ≤ π the terms fall below 2^-80 of the largest long before the 60th, and the absolute
 /// error is a few ulps of 1, far below anything a mesher can see on a letter of height 1.
-fn cos_sin(x: f64) -> (f64, f64) {
+pub(super) fn cos_sin(x: f64) -> (f64, f64) {
     let (mut cos, mut sin) = (1.0, 0.0);
     let mut term = 1.0;
     for k in 1..60 {
@@ -149,7 +149,7 @@ fn shifted(points: &[Point], dx: f64) -> Vec<Point> {
 
 /// Appends a closed loop: its points, and a segment from each to the next, the last back to
 /// the first.
-fn push_loop(pslg: &mut Pslg, points: &[Point]) {
+pub(super) fn push_loop(pslg: &mut Pslg, points: &[Point]) {
     let base = pslg.points.len() as u32;
     let n = points.len() as u32;
     pslg.points.extend_from_slice(points);

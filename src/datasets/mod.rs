@@ -2,15 +2,19 @@
 //! caption of Fig. 15), generated deterministically by name, plus a scaling series.
 //!
 //! `random` makes the seeded point sets (bit-for-bit the same on every machine), `imr` the
-//! letters PSLG. Provenance and seeds are listed in `datasets/README.md`.
+//! letters PSLG, `pslg` the small PSLG examples beside them (holes, a 5° wedge, a slit,
+//! nested boundaries, short segments beside long ones), reachable by name like the datasets.
+//! Provenance and seeds are listed in `datasets/README.md`.
 
 mod imr;
+mod pslg;
 mod random;
 
 use crate::error::{Error, Result};
 use crate::geom::Hexagon;
 use crate::mesh::Pslg;
 
+pub use pslg::{pslg_example, pslg_examples, PslgExample, PSLG_EXAMPLES, SHORT_PIECES, WEDGE_DEG};
 pub use random::LINE_END;
 
 /// The datasets of Table 1, small enough to commit and to mesh in a test.
@@ -112,8 +116,12 @@ pub fn names() -> Vec<&'static str> {
     CATALOGUE.iter().map(|s| s.name).collect()
 }
 
-/// The dataset called `name`. Unknown names give `Error::Usage` listing the known ones.
+/// The dataset or PSLG example called `name`. Unknown names give `Error::Usage` listing the
+/// known ones.
 pub fn by_name(name: &str) -> Result<Pslg> {
+    if let Some(example) = pslg_example(name) {
+        return Ok(example.pslg);
+    }
     let spec = spec(name)?;
     match (spec.kind, spec.seed) {
         (Kind::ClosePair, _) => Ok(close_pair()),
@@ -130,14 +138,21 @@ pub fn by_name(name: &str) -> Result<Pslg> {
 /// averaged over seeds. `random_with_seed(name, default_seed(name))` equals `by_name(name)`.
 /// For one seed, a smaller plane set is a prefix of a larger one.
 pub fn random_with_seed(name: &str, seed: u64) -> Result<Pslg> {
+    if PSLG_EXAMPLES.contains(&name) {
+        return Err(not_random(name));
+    }
     let spec = spec(name)?;
     match spec.kind {
         Kind::Line(_) | Kind::Plane(_) => Ok(generate(spec.kind, seed)),
-        Kind::ClosePair | Kind::Imr => Err(Error::Usage(format!(
-            "dataset '{name}' is not random; the random ones are {}",
-            random_names().join(", ")
-        ))),
+        Kind::ClosePair | Kind::Imr => Err(not_random(name)),
     }
+}
+
+fn not_random(name: &str) -> Error {
+    Error::Usage(format!(
+        "dataset '{name}' is not random; the random ones are {}",
+        random_names().join(", ")
+    ))
 }
 
 /// The seed of the canonical dataset `name`; `None` for unknown names and the datasets that
@@ -146,8 +161,12 @@ pub fn default_seed(name: &str) -> Option<u64> {
     CATALOGUE.iter().find(|s| s.name == name)?.seed
 }
 
-/// One line of provenance for `name`; for an unknown name, a line saying so.
+/// One line of provenance for `name` (for a PSLG example, what it tests); for an unknown
+/// name, a line saying so.
 pub fn describe(name: &str) -> &'static str {
+    if let Some(example) = pslg_example(name) {
+        return example.tests;
+    }
     CATALOGUE
         .iter()
         .find(|s| s.name == name)
@@ -157,6 +176,9 @@ pub fn describe(name: &str) -> &'static str {
 /// The file `name` is written to: `<name>.poly` when it has segments, `<name>.node` when it
 /// is a point set.
 pub fn file_name(name: &str) -> Result<String> {
+    if PSLG_EXAMPLES.contains(&name) {
+        return Ok(format!("{name}.poly"));
+    }
     let spec = spec(name)?;
     Ok(match spec.kind {
         Kind::Imr => format!("{name}.poly"),
@@ -167,8 +189,9 @@ pub fn file_name(name: &str) -> Result<String> {
 fn spec(name: &str) -> Result<&'static Spec> {
     CATALOGUE.iter().find(|s| s.name == name).ok_or_else(|| {
         Error::Usage(format!(
-            "unknown dataset '{name}'; the datasets are {}",
-            names().join(", ")
+            "unknown dataset '{name}'; the datasets are {}, and the PSLG examples {}",
+            names().join(", "),
+            PSLG_EXAMPLES.join(", ")
         ))
     })
 }
@@ -218,7 +241,7 @@ mod tests {
         match by_name("plane-3k") {
             Err(Error::Usage(m)) => {
                 assert!(m.contains("plane-3k"), "{m}");
-                for name in names() {
+                for name in names().into_iter().chain(PSLG_EXAMPLES.iter().copied()) {
                     assert!(m.contains(name), "{m} lacks {name}");
                 }
             }
@@ -268,8 +291,11 @@ mod tests {
     }
 
     #[test]
-    fn only_imr_is_written_as_a_poly_file() {
+    fn only_imr_and_the_pslg_examples_are_written_as_poly_files() {
         assert_eq!(file_name("imr").ok().as_deref(), Some("imr.poly"));
+        for name in PSLG_EXAMPLES {
+            assert_eq!(file_name(name).ok(), Some(format!("{name}.poly")));
+        }
         assert_eq!(
             file_name("close-pair").ok().as_deref(),
             Some("close-pair.node")
@@ -278,8 +304,17 @@ mod tests {
     }
 
     #[test]
-    fn every_dataset_has_a_description() {
-        for name in names() {
+    fn every_dataset_and_example_has_a_description_and_resolves_by_name() {
+        for name in PSLG_EXAMPLES {
+            assert_eq!(
+                by_name(name).ok(),
+                pslg_example(name).map(|e| e.pslg),
+                "{name}"
+            );
+            assert!(matches!(random_with_seed(name, 1), Err(Error::Usage(_))));
+            assert_eq!(default_seed(name), None);
+        }
+        for name in names().into_iter().chain(PSLG_EXAMPLES.iter().copied()) {
             assert_ne!(describe(name), "not a hexmesh dataset", "{name}");
         }
     }

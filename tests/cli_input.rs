@@ -106,7 +106,8 @@ fn datasets_regenerates_the_committed_files_byte_for_byte() {
         "{}",
         String::from_utf8_lossy(&out.stderr)
     );
-    for name in hexmesh::datasets::SMALL {
+    let small = hexmesh::datasets::SMALL.iter();
+    for name in small.chain(hexmesh::datasets::PSLG_EXAMPLES) {
         let file = hexmesh::datasets::file_name(name).expect("dataset file name");
         let fresh = std::fs::read(dir.join(&file)).expect("written");
         let committed = std::fs::read(

@@ -391,9 +391,10 @@ fn windows_line_endings_are_read() {
 }
 
 #[test]
-fn every_small_dataset_survives_write_pslg_and_read_input_bit_exactly() {
+fn every_small_dataset_and_pslg_example_survives_write_pslg_and_read_input_bit_exactly() {
     let dir = scratch("datasets");
-    for &name in hexmesh::datasets::SMALL {
+    let small = hexmesh::datasets::SMALL.iter();
+    for &name in small.chain(hexmesh::datasets::PSLG_EXAMPLES) {
         let pslg = hexmesh::datasets::by_name(name).expect(name);
         let file = hexmesh::datasets::file_name(name).expect(name);
         let path = dir.join(&file);

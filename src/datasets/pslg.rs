@@ -93,9 +93,10 @@ fn wedge() -> PslgExample {
     push_loop(&mut pslg, &[[0.0, 0.0], [1.0, 0.0], [c, s]]);
     PslgExample {
         name: "pslg-wedge-5",
-        tests: "a thin wedge, the triangle with a 5° input angle at the origin: no mesh of it \
-                has an angle above 5° there, so the references cannot meet the 30° they are \
-                asked for and must still terminate and grade towards the apex",
+        tests: "a thin wedge, the triangle with a 5° input angle at the origin: every mesh of \
+                it has an angle of at most 5° in that corner, so a mesher must terminate \
+                without meeting an angle request there (the references' rows fail the 30° \
+                they are asked for by construction) and keep the triangles at the apex valid",
         area: 0.5 * s,
         pslg,
     }

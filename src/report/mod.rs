@@ -9,11 +9,13 @@
 //! - `readme`: the generated `README.md`.
 //! - `progress`: a progress bar on a terminal, plain lines otherwise.
 //! - `lsb`, `saalfeld`: the comparisons papers 003 and 002 make (angle descent, points added).
+//! - `pslg`: the PSLG examples meshed by every mesher that keeps segments (`pslg.csv`).
 //! - `run`: the cases, isolated and checked; `run_report` ties everything together.
 
 pub mod lsb;
 pub mod plot;
 pub mod progress;
+pub mod pslg;
 pub mod readme;
 pub mod row;
 mod run;
@@ -59,7 +61,9 @@ pub fn case_params(mesher: &str) -> (Params, String) {
 /// What `hexmesh report` runs and where it writes.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ReportOptions {
-    /// Dataset names (`datasets::by_name`); empty means `datasets::SMALL`.
+    /// Dataset names (`datasets::by_name`): the paper's datasets go to `results.csv`, the PSLG
+    /// examples (`datasets::PSLG_EXAMPLES`) to `pslg.csv`. Empty means `datasets::SMALL` and
+    /// every PSLG example.
     pub datasets: Vec<String>,
     /// Mesher names (`registry::mesher`); empty means every registered mesher.
     pub meshers: Vec<String>,
@@ -108,6 +112,7 @@ pub fn is_generated_file(name: &str) -> bool {
         "lsb.csv",
         "saalfeld.csv",
         "seeds.csv",
+        "pslg.csv",
         "table1.md",
         "README.md",
     ];
@@ -156,6 +161,7 @@ mod tests {
         std::fs::create_dir_all(&dir).unwrap();
         for f in [
             "results.csv",
+            "pslg.csv",
             "angles-imr.png",
             "mesh-imr-hex-zoom.svg",
             "scaling.svg",

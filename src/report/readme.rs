@@ -30,6 +30,8 @@ pub struct Artifacts {
     pub scaling: Option<String>,
     /// Notes on artifacts that could not be made (a picture that failed, ...).
     pub problems: Vec<String>,
+    /// `pslg.csv` is written (the PSLG examples ran) and its section follows the README.
+    pub pslg: bool,
 }
 
 /// What the README needs to know about how the report was run.
@@ -71,6 +73,9 @@ pub fn render(
     md.push_str("- [`seeds.csv`](seeds.csv): triangle counts of the hexagon meshers over ten seeds of each random dataset (the spread behind Table 1's one draw; empty without the max-angle protocol).\n");
     if meshers.contains(&"lsb") {
         md.push_str("- [`lsb.csv`](lsb.csv): longest-side bisection's angle descent against Theorem 3.4 (paper 003).\n");
+    }
+    if art.pslg {
+        md.push_str("- [`pslg.csv`](pslg.csv): the PSLG examples (holes, a 5° wedge, a slit, nested boundaries, short segments beside long ones) meshed by every mesher that keeps segments; see \"PSLG examples\" below.\n");
     }
     if meshers.contains(&"saalfeld") {
         md.push_str("- [`saalfeld.csv`](saalfeld.csv): points added by Saalfeld's Sec. 6 iteration, its Sec. 5 construction and CGAL's conforming Delaunay triangulation (paper 002).\n");

@@ -25,11 +25,14 @@ use crate::{datasets, isolate, maxangle, registry};
 const PICTURED: &[&str] = &["close-pair", "line-100", "plane-100", "imr"];
 
 /// What one case leaves behind besides its row.
-struct Outcome {
-    row: Row,
+pub(super) struct Outcome {
+    pub(super) row: Row,
     histogram: Option<Vec<u64>>,
     bounds: Vec<f64>,
     mesh: Option<TriMesh>,
+    /// The verdict on the mesh, when there was one to judge (its violations by kind, the
+    /// near-segment and interior figures apart).
+    pub(super) verdict: Option<quality::Verdict>,
 }
 
 /// Runs the whole report and writes `opts.out` (see the module comment of `report`).
@@ -42,7 +45,12 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
     for n in &names {
         inputs.push((n.clone(), datasets::by_name(n)?));
     }
+    let examples: Vec<datasets::PslgExample> = example_names(opts)
+        .iter()
+        .filter_map(|n| datasets::pslg_example(n))
+        .collect();
     let meshers = resolve_meshers(&opts.meshers)?;
+    let segment_meshers = super::pslg::segment_meshers(&meshers);
     let exe = isolate::find_exe()?;
     plot::ensure_font()?;
     clear_generated(&opts.out)?;
@@ -70,6 +78,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
             .count()
         * super::seeds::SEEDS as usize;
     let total = (inputs.len() * meshers.len()
+        + examples.len() * segment_meshers.len()
         + table_inputs.len() * references.len()
         + lsb_steps
         + saalfeld_steps
@@ -194,6 +203,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         max_angle_step: opts.max_angle_step,
         max_angle_timeout_s: opts.max_angle_timeout.as_secs_f64(),
     };
+    let with_pslg = !examples.is_empty() && !segment_meshers.is_empty();
+    art.pslg = with_pslg;
     let mut readme_text = readme::render(&rows, &max_angles, &art, &facts);
     if with_lsb {
         let mut last = String::new();
@@ -234,6 +245,32 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         )?;
         readme_text.push_str(&super::saalfeld::render(&saalfeld_rows));
     }
+    if with_pslg {
+        let mut last = String::new();
+        let pslg_rows = super::pslg::pslg_rows(
+            &exe,
+            &examples,
+            &segment_meshers,
+            opts.runs,
+            opts.timeout,
+            |label| {
+                if !last.is_empty() {
+                    progress.finish_step(&last);
+                }
+                progress.start(label);
+                last = label.to_string();
+            },
+        );
+        if !last.is_empty() {
+            progress.finish_step(&last);
+        }
+        write_csv(
+            &opts.out.join("pslg.csv"),
+            super::pslg::PSLG_COLUMNS,
+            &pslg_rows,
+        )?;
+        readme_text.push_str(&super::pslg::render(&examples, &pslg_rows));
+    }
     write_text(&opts.out.join("README.md"), &readme_text)?;
     progress.note(&format!(
         "report written to {} ({} rows)",
@@ -260,13 +297,17 @@ fn check_options(opts: &ReportOptions) -> Result<()> {
     Ok(())
 }
 
-/// The datasets in the order given, `SMALL` when none are, with `SCALING` appended when asked;
-/// a name given twice runs once.
+/// The datasets of `results.csv` in the order given (PSLG examples left out), `SMALL` when
+/// none are given, with `SCALING` appended when asked; a name given twice runs once.
 fn dataset_names(opts: &ReportOptions) -> Vec<String> {
     let mut names: Vec<String> = if opts.datasets.is_empty() {
         datasets::SMALL.iter().map(|s| s.to_string()).collect()
     } else {
-        opts.datasets.clone()
+        opts.datasets
+            .iter()
+            .filter(|n| !datasets::PSLG_EXAMPLES.contains(&n.as_str()))
+            .cloned()
+            .collect()
     };
     if opts.scaling {
         names.extend(datasets::SCALING.iter().map(|s| s.to_string()));
@@ -278,6 +319,16 @@ fn dataset_names(opts: &ReportOptions) -> Vec<String> {
         new
     });
     names
+}
+
+/// The PSLG examples of `pslg.csv`: every one when no dataset is given, else those named, in
+/// the order of `PSLG_EXAMPLES`.
+fn example_names(opts: &ReportOptions) -> Vec<&'static str> {
+    datasets::PSLG_EXAMPLES
+        .iter()
+        .copied()
+        .filter(|e| opts.datasets.is_empty() || opts.datasets.iter().any(|n| n == e))
+        .collect()
 }
 
 fn resolve_meshers(names: &[String]) -> Result<Vec<Box<dyn Mesher>>> {
@@ -304,7 +355,9 @@ fn bounds_for(mesher: &str) -> Result<Bounds> {
     }
 }
 
-fn run_case(
+/// Meshes `input` with `mesher` `runs` times, each in a child of `exe` killed after
+/// `timeout`, and checks the first mesh against the mesher's bounds (`bounds_for`).
+pub(super) fn run_case(
     exe: &Path,
     mesher: &dyn Mesher,
     dataset: &str,
@@ -322,6 +375,7 @@ fn run_case(
         histogram: None,
         bounds: Vec::new(),
         mesh: None,
+        verdict: None,
     };
     if input.has_segments() && !mesher.supports_segments() {
         outcome.row.err = NOT_RUN.into();
@@ -420,8 +474,9 @@ fn run_case(
         row.bounds_ok = Some(verdict.passed());
         outcome.bounds = b.min_angle.into_iter().chain(b.max_angle).collect();
     }
-    outcome.histogram = Some(verdict.metrics.angle_histogram);
+    outcome.histogram = Some(verdict.metrics.angle_histogram.clone());
     outcome.mesh = Some(run.mesh);
+    outcome.verdict = Some(verdict);
     outcome
 }
 
@@ -698,6 +753,17 @@ mod tests {
         let mut want = vec!["imr", "plane-1k"];
         want.extend(datasets::SCALING);
         assert_eq!(dataset_names(&opts), want);
+    }
+
+    #[test]
+    fn pslg_examples_go_to_their_own_table_all_by_default_else_as_named() {
+        let mut opts = ReportOptions::default();
+        assert_eq!(example_names(&opts), datasets::PSLG_EXAMPLES);
+        opts.datasets = vec!["pslg-slit".into(), "imr".into(), "pslg-holes".into()];
+        assert_eq!(example_names(&opts), ["pslg-holes", "pslg-slit"]);
+        assert_eq!(dataset_names(&opts), ["imr"]);
+        opts.datasets = vec!["plane-100".into()];
+        assert!(example_names(&opts).is_empty());
     }
 
     #[test]

@@ -7,11 +7,15 @@
 //! shortest edge of a triangle with smallest angle α is 2R sin α, so R/ℓ_min = 1/(2 sin α) and
 //! the limit refines exactly the triangles with α < θ: `from_deg` needs no correction.
 //!
-//! Domain: spade's `exclude_outer_faces` leaves out the faces an even number of segment
-//! crossings away from the unbounded face, while Triangle's and DESIGN.md's rule removes the
-//! outside plus the regions around hole seeds. Spade's exclusion is used during refinement
-//! only when it excludes nothing this rule keeps (otherwise kept faces would go unrefined);
-//! the output is always cut by this rule, with a flood fill across non-segment edges.
+//! Domain: spade's `exclude_outer_faces` peels layers of faces between segments, alternately
+//! outer and inner, while Triangle's and DESIGN.md's rule removes the outside plus the regions
+//! around hole seeds. Spade's exclusion is used during refinement only when it excludes
+//! nothing this rule keeps (otherwise kept faces would go unrefined): it is tried when no
+//! face an even number of crossings deep is kept, and its `excluded_faces` are checked after
+//! the refinement, which runs again without it when they hold a kept face. (Its peeling puts
+//! a face reachable both with and without crossing a segment into two layers: around an
+//! interior slit it excludes the whole square.) The output is always cut by this rule, with a
+//! flood fill across non-segment edges.
 //!
 //! Budget: one spade step inserts one vertex, so `max_steps` and `max_vertices` (minus the
 //! initial vertices) both become `max_additional_vertices`, the smaller one winning; an
@@ -196,21 +200,31 @@ fn mesh_domain(domain: &Pslg, params: &Params) -> Result<Outcome> {
 
     let initial = cdt.num_vertices();
     let e = effective(params, Some(initial));
-    let mut rp = RefinementParameters::<f64>::new()
-        .with_angle_limit(AngleLimit::from_deg(e.min_angle))
-        .exclude_outer_faces(exclude);
-    if let Some(a) = e.max_area {
-        rp = rp.with_max_allowed_area(a);
-    }
     let limit = e
         .max_additional_vertices
         .unwrap_or_else(|| default_extra_vertices(initial));
-    rp = rp.with_max_additional_vertices(limit);
-    let result = cdt.refine(rp);
+    let parameters = |exclude: bool| {
+        let mut rp = RefinementParameters::<f64>::new()
+            .with_angle_limit(AngleLimit::from_deg(e.min_angle))
+            .exclude_outer_faces(exclude);
+        if let Some(a) = e.max_area {
+            rp = rp.with_max_allowed_area(a);
+        }
+        rp.with_max_additional_vertices(limit)
+    };
+    let unrefined = exclude.then(|| cdt.clone());
+    let mut result = cdt.refine(parameters(exclude));
+    let mut removed = removed_faces(&cdt, &locate_seeds(&cdt, &domain.holes, false)?);
+    if let Some(fresh) = unrefined {
+        // Spade's peeling is not the crossing parity tested above; where it left out a face
+        // the domain keeps, that face went unrefined: refine again without the exclusion.
+        if result.excluded_faces.iter().any(|f| !removed[f.index()]) {
+            cdt = fresh;
+            result = cdt.refine(parameters(false));
+            removed = removed_faces(&cdt, &locate_seeds(&cdt, &domain.holes, false)?);
+        }
+    }
     let added = cdt.num_vertices() - initial;
-
-    let seeds = locate_seeds(&cdt, &domain.holes, false)?;
-    let removed = removed_faces(&cdt, &seeds);
     let mesh = extract(&cdt, &removed, domain.points.len());
     let stop_reason = (!result.refinement_complete)
         .then(|| format!("vertex budget exhausted: spade added its maximum of {limit} vertices"));
@@ -424,6 +438,34 @@ mod tests {
             .expect("mesh");
         assert!(run.complete);
         assert!((run.mesh.area() - 16.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_square_with_an_interior_slit_is_refined_to_the_requested_angle() {
+        // Spade's peeling puts every face of this square in two layers and excludes them
+        // all: without the check after refinement, the six triangles of the constrained
+        // Delaunay triangulation came back unrefined (smallest angle 21.8°).
+        let input = Pslg {
+            points: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [0.25, 0.375],
+                [0.75, 0.625],
+            ],
+            segments: vec![[0, 1], [1, 2], [2, 3], [3, 0], [4, 5]],
+            ..Pslg::default()
+        };
+        let run = SpadeMesher
+            .mesh(&input, &Params::default().with_min_angle(30.0))
+            .expect("mesh");
+        assert!(run.complete);
+        assert!(run.mesh.triangles.len() > 6, "{}", run.mesh.triangles.len());
+        let m = crate::quality::metrics(&run.mesh, Some(&input));
+        let min = m.min_angle.map_or(0.0, |w| w.value);
+        assert!(min >= 30.0 - 1e-6, "{min}");
+        assert!((run.mesh.area() - 1.0).abs() < 1e-12);
     }
 
     #[test]

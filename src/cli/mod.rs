@@ -53,7 +53,8 @@ enum Command {
 
 #[derive(Args)]
 struct ReportArgs {
-    /// Datasets, comma-separated (default: the small ones).
+    /// Datasets, comma-separated (default: the small ones and every PSLG example). PSLG
+    /// examples named here go to pslg.csv, the others to results.csv.
     #[arg(long, value_delimiter = ',')]
     datasets: Vec<String>,
     /// Meshers, comma-separated (default: every registered mesher).

@@ -370,3 +370,32 @@ fn a_renamed_binary_runs_its_children_as_itself() {
     assert!(out.status.success(), "{}", text(&out));
     assert!(prefix.with_extension("ele").exists());
 }
+
+/// A reader that closes the pipe early (`hexmesh verify … | head -1`) ends the command
+/// quietly: no panic message about printing to stdout, no panic exit code.
+#[test]
+fn a_closed_output_pipe_ends_the_command_without_a_panic() {
+    use std::process::Stdio;
+    let prefix = temp("closed-pipe-plane-1k");
+    let out = hexmesh(&[
+        "mesh",
+        "plane-1k",
+        "--mesher",
+        "hex-simple",
+        "-o",
+        prefix.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_hexmesh"))
+        .args(["verify", prefix.to_str().unwrap(), "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("starts");
+    // Close the read end at once: every write of the JSON report meets a closed pipe.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("finishes");
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_ne!(out.status.code(), Some(101), "{stderr}");
+}

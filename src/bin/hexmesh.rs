@@ -3,6 +3,14 @@
 //! that a child never parses the public command line.
 
 fn main() -> std::process::ExitCode {
+    // A reader that stops early (`hexmesh verify … | head`) ends the command quietly, as it
+    // ends other command-line tools, instead of a panic on the next write: Rust ignores
+    // SIGPIPE unless told otherwise.
+    #[cfg(unix)]
+    // SAFETY: restoring the default disposition of one signal, before any thread starts.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     if std::env::args_os()
         .nth(1)
         .is_some_and(|a| a == hexmesh::isolate::CHILD_COMMAND)

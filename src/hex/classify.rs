@@ -89,14 +89,21 @@ pub fn fin_mask(h: &Hierarchy, key: Key) -> u8 {
 /// The directions in which the neighbour of `key` lies inside the bounding hexagon and is
 /// subdivided, as a bit mask: the fins of `key` when it is a full leaf.
 pub fn subdivided_neighbours(h: &Hierarchy, key: Key) -> u8 {
-    let mut mask = 0u8;
-    for d in 0..6 {
-        let n = key.neighbor(d);
-        if n.inside() && h.is_subdivided(n) {
-            mask |= 1 << d;
+    subdivided_and_neighbours(h, key).1
+}
+
+/// Whether `key` is subdivided, and `subdivided_neighbours(key)`, from the same lookups.
+pub fn subdivided_and_neighbours(h: &Hierarchy, key: Key) -> (bool, u8) {
+    let (own, mut mask) = h.subdivided_neighbourhood(key);
+    let mut rest = mask;
+    while rest != 0 {
+        let d = rest.trailing_zeros() as usize;
+        rest &= rest - 1;
+        if !key.neighbor(d).inside() {
+            mask &= !(1 << d);
         }
     }
-    mask
+    (own, mask)
 }
 
 /// The mask as one cyclic run of 1 to 5 directions, or `None` (no fins, all six, or several
@@ -276,6 +283,31 @@ impl Rings {
         };
         let removed: Vec<Key> = old.iter().copied().filter(|k| !in_new(k)).collect();
         let added: Vec<Key> = new.iter().copied().filter(|k| !in_old(k)).collect();
+        self.apply_changes(h, removed, added);
+    }
+
+    /// `update` from the hexagons whose occupancy may have changed since these rings were
+    /// made (`Hierarchy::take_occupancy_changes`, in any order, with repeats), without
+    /// listing every occupied hexagon.
+    pub fn update_changed(&mut self, h: &Hierarchy, mut changed: Vec<Key>) {
+        changed.sort_unstable_by_key(|k| k.packed());
+        changed.dedup();
+        let removed: Vec<Key> = changed
+            .iter()
+            .copied()
+            .filter(|k| self.occupied.contains_key(k) && !h.is_occupied(*k))
+            .collect();
+        let added: Vec<Key> = changed
+            .iter()
+            .copied()
+            .filter(|k| !self.occupied.contains_key(k) && h.is_occupied(*k))
+            .collect();
+        self.apply_changes(h, removed, added);
+    }
+
+    /// `update` once the hexagons that stopped (`removed`) and started (`added`) being
+    /// occupied are known, each list sorted.
+    fn apply_changes(&mut self, h: &Hierarchy, removed: Vec<Key>, added: Vec<Key>) {
         if removed.is_empty() && added.is_empty() {
             return;
         }

@@ -41,7 +41,7 @@ pub fn extract_moved(
     placement: Placement,
     moved: &FxHashMap<Key, Point>,
 ) -> (TriMesh, Vec<Key>) {
-    extract_where(h, placement, moved, &Patch::default(), |_| true)
+    extract_all(h, placement, moved, &Patch::default())
 }
 
 /// `extract_moved`, with the triangles around the centres `patch.dropped` replaced by
@@ -53,7 +53,7 @@ pub fn extract_patched(
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
 ) -> (TriMesh, Vec<Key>) {
-    extract_where(h, placement, moved, patch, |_| true)
+    extract_all(h, placement, moved, patch)
 }
 
 /// The triangles of `extract_moved` that lie in lattice triangles touching `region` (with
@@ -65,7 +65,7 @@ pub fn extract_region(
     moved: &FxHashMap<Key, Point>,
     region: &Region,
 ) -> (TriMesh, Vec<Key>) {
-    extract_where(h, placement, moved, &Patch::default(), |tri| {
+    extract_where(h, placement, moved, &Patch::default(), false, |tri| {
         region.touches(tri)
     })
 }
@@ -79,7 +79,7 @@ pub fn extract_region_patched(
     patch: &Patch,
     region: &Region,
 ) -> (TriMesh, Vec<Key>) {
-    extract_where(h, placement, moved, patch, |tri| region.touches(tri))
+    extract_where(h, placement, moved, patch, false, |tri| region.touches(tri))
 }
 
 /// The dual recursion, descending only into lattice triangles for which `keep` holds (it must
@@ -90,67 +90,198 @@ fn extract_where(
     placement: Placement,
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
+    whole: bool,
     keep: impl Fn(&[Key; 3]) -> bool,
 ) -> (TriMesh, Vec<Key>) {
-    let mut b = Builder::new(h, placement, moved, &patch.dropped);
-    // Each entry carries whether its three hexagons are subdivided (outside counts as
-    // subdivided), looked up once per distinct hexagon when the parent is split.
-    let state = |c: Key| (c, h.is_subdivided_or_outside(c));
-    let mut stack: Vec<[(Key, bool); 3]> = Vec::new();
-    // The six lattice triangles around the root, counter-clockwise because the lattice
-    // directions are listed counter-clockwise.
-    for d in (0..6).rev() {
-        stack.push([
-            state(Key::ROOT),
-            state(Key::ROOT.neighbor(d)),
-            state(Key::ROOT.neighbor((d + 1) % 6)),
-        ]);
-    }
-    while let Some(tri) = stack.pop() {
-        if !tri.iter().any(|c| c.0.inside()) {
-            continue;
-        }
-        let sub = tri.map(|c| c.1);
-        let keys = tri.map(|c| c.0);
-        if !keep(&keys) {
-            continue;
-        }
-        match sub.iter().filter(|&&s| s).count() {
-            3 => {
-                let [a, b2, c] = keys;
-                let (mab, mbc, mca) = (
-                    state(midpoint(a, b2)),
-                    state(midpoint(b2, c)),
-                    state(midpoint(c, a)),
-                );
-                let (ca, cb, cc) = (
-                    state(a.central_child()),
-                    state(b2.central_child()),
-                    state(c.central_child()),
-                );
-                // Pushed in reverse so that they are emitted in this order.
-                stack.push([mab, mbc, mca]);
-                stack.push([mca, mbc, cc]);
-                stack.push([mab, cb, mbc]);
-                stack.push([ca, mab, mca]);
-            }
-            2 => {
-                // Rotate so that the unsubdivided hexagon comes last: (A, B sub, C not).
-                let r = (0..3).find(|&r| !sub[(r + 2) % 3]).unwrap_or(0);
-                let [a, b2, c] = [keys[r], keys[(r + 1) % 3], keys[(r + 2) % 3]];
-                let m = midpoint(a, b2);
-                b.emit([m, b2, c]);
-                b.emit([a, m, c]);
-            }
-            _ => b.emit(keys),
-        }
-    }
+    let mut b = Builder::new(h, placement, moved, &patch.dropped, whole);
+    descend(h, root_triangles(h), &keep, &mut |tri| b.emit(tri));
     for tri in patch.triangles.iter().filter(|t| keep(t)) {
         b.emit_patch(*tri);
     }
     b.finish()
 }
 
+/// `extract_where` of the whole dual, with the descent split over threads for a large
+/// hierarchy. The output is the serial one, byte for byte: the lattice triangles of the first
+/// levels are expanded in emission order into independent subtrees (the depth-first descent
+/// emits each subtree whole before the next), each part numbers the vertices it meets in the
+/// order it meets them, and the parts are merged in order, a vertex taking the next number
+/// where it is first met: the order of the serial descent.
+fn extract_all(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    patch: &Patch,
+) -> (TriMesh, Vec<Key>) {
+    extract_all_from(h, placement, moved, patch, PARALLEL_EXTRACT_MIN)
+}
+
+/// `extract_all`, split over threads from `min_leaves` full leaves on.
+fn extract_all_from(
+    h: &Hierarchy,
+    placement: Placement,
+    moved: &FxHashMap<Key, Point>,
+    patch: &Patch,
+    min_leaves: usize,
+) -> (TriMesh, Vec<Key>) {
+    if h.full_leaves < min_leaves {
+        return extract_where(h, placement, moved, patch, true, |_| true);
+    }
+    let mut b = Builder::new(h, placement, moved, &patch.dropped, true);
+    let items = expand(h, root_triangles(h), PARALLEL_SUBTREES);
+    let parts = {
+        let base = &b;
+        crate::hex::extended::in_parallel_from(&items, 2, |chunk| {
+            let mut part = Part::default();
+            for item in chunk {
+                match *item {
+                    Item::Emit(tri) => part.emit(base, tri),
+                    Item::Descend(tri) => {
+                        descend(h, vec![tri], &|_| true, &mut |t| part.emit(base, t))
+                    }
+                }
+            }
+            // Only the vertices and triangles are merged.
+            part.index = FxHashMap::default();
+            part
+        })
+    };
+    for part in parts {
+        b.absorb(part);
+    }
+    for tri in &patch.triangles {
+        b.emit_patch(*tri);
+    }
+    b.finish()
+}
+
+/// Hierarchies with at least this many full leaves are extracted over threads.
+const PARALLEL_EXTRACT_MIN: usize = 1 << 16;
+
+/// `extract_all` expands the first levels until this many subtrees are pending.
+const PARALLEL_SUBTREES: usize = 1024;
+
+/// A lattice triangle of the recursion with whether each of its hexagons is subdivided
+/// (outside counts as subdivided).
+type StateTri = [(Key, bool); 3];
+
+/// What the recursion does next, in emission order: emit a triangle, or descend into a
+/// lattice triangle.
+#[derive(Debug, Clone, Copy)]
+enum Item {
+    Emit([Key; 3]),
+    Descend(StateTri),
+}
+
+/// The six lattice triangles around the root, as a stack (the first to emit on top),
+/// counter-clockwise because the lattice directions are listed counter-clockwise.
+fn root_triangles(h: &Hierarchy) -> Vec<StateTri> {
+    let state = |c: Key| (c, h.is_subdivided_or_outside(c));
+    (0..6)
+        .rev()
+        .map(|d| {
+            [
+                state(Key::ROOT),
+                state(Key::ROOT.neighbor(d)),
+                state(Key::ROOT.neighbor((d + 1) % 6)),
+            ]
+        })
+        .collect()
+}
+
+/// One step of the recursion on `tri`: the triangles it emits and the sub-triangles to
+/// descend into, in emission order (`descend` pushes the sub-triangles in reverse).
+fn step(h: &Hierarchy, tri: StateTri, out: &mut Vec<Item>) {
+    if !tri.iter().any(|c| c.0.inside()) {
+        return;
+    }
+    let state = |c: Key| (c, h.is_subdivided_or_outside(c));
+    let sub = tri.map(|c| c.1);
+    let keys = tri.map(|c| c.0);
+    match sub.iter().filter(|&&s| s).count() {
+        3 => {
+            let [a, b2, c] = keys;
+            let (mab, mbc, mca) = (
+                state(midpoint(a, b2)),
+                state(midpoint(b2, c)),
+                state(midpoint(c, a)),
+            );
+            let (ca, cb, cc) = (
+                state(a.central_child()),
+                state(b2.central_child()),
+                state(c.central_child()),
+            );
+            out.push(Item::Descend([ca, mab, mca]));
+            out.push(Item::Descend([mab, cb, mbc]));
+            out.push(Item::Descend([mca, mbc, cc]));
+            out.push(Item::Descend([mab, mbc, mca]));
+        }
+        2 => {
+            // Rotate so that the unsubdivided hexagon comes last: (A, B sub, C not).
+            let r = (0..3).find(|&r| !sub[(r + 2) % 3]).unwrap_or(0);
+            let [a, b2, c] = [keys[r], keys[(r + 1) % 3], keys[(r + 2) % 3]];
+            let m = midpoint(a, b2);
+            out.push(Item::Emit([m, b2, c]));
+            out.push(Item::Emit([a, m, c]));
+        }
+        _ => out.push(Item::Emit(keys)),
+    }
+}
+
+/// The depth-first recursion from `stack` (the next triangle on top), giving each dual
+/// triangle to `emit` in order and descending only where `keep` holds.
+fn descend(
+    h: &Hierarchy,
+    mut stack: Vec<StateTri>,
+    keep: &impl Fn(&[Key; 3]) -> bool,
+    emit: &mut impl FnMut([Key; 3]),
+) {
+    let mut next = Vec::with_capacity(4);
+    while let Some(tri) = stack.pop() {
+        if !keep(&tri.map(|c| c.0)) {
+            continue;
+        }
+        next.clear();
+        step(h, tri, &mut next);
+        // A step emits triangles or descends, never both: emitted now, in order, or pushed
+        // in reverse so that the first sub-triangle is popped next.
+        for &item in &next {
+            if let Item::Emit(t) = item {
+                emit(t);
+            }
+        }
+        for &item in next.iter().rev() {
+            if let Item::Descend(t) = item {
+                stack.push(t);
+            }
+        }
+    }
+}
+
+/// The recursion from the roots `stack`, one level at a time in emission order, until at
+/// least `want` subtrees are pending or nothing is left to expand: a list whose items,
+/// each done in turn (a subtree by `descend`), emit what the serial recursion emits.
+fn expand(h: &Hierarchy, mut stack: Vec<StateTri>, want: usize) -> Vec<Item> {
+    stack.reverse();
+    let mut items: Vec<Item> = stack.into_iter().map(Item::Descend).collect();
+    loop {
+        let pending = items
+            .iter()
+            .filter(|i| matches!(i, Item::Descend(_)))
+            .count();
+        if pending == 0 || pending >= want {
+            return items;
+        }
+        let mut next = Vec::with_capacity(4 * items.len());
+        for item in items {
+            match item {
+                Item::Emit(_) => next.push(item),
+                Item::Descend(t) => step(h, t, &mut next),
+            }
+        }
+        items = next;
+    }
+}
 /// The cell at the midpoint of two adjacent cells of the same level.
 fn midpoint(a: Key, b: Key) -> Key {
     Key::new(a.k + 1, a.i + b.i, a.j + b.j)
@@ -181,15 +312,18 @@ impl<'a> Builder<'a> {
         placement: Placement,
         moved: &'a FxHashMap<Key, Point>,
         dropped: &'a FxHashSet<Key>,
+        whole: bool,
     ) -> Builder<'a> {
         // About one vertex per full leaf and two triangles per vertex: reserving avoids
-        // rehashing a table of millions of entries.
-        let expected = h.full_leaves + h.points.len();
+        // rehashing a table of millions of entries. A part of the dual (`whole` false) is
+        // small: its tables grow as needed.
+        let expected = if whole { h.full_leaves } else { 0 } + h.points.len();
         let mut index = FxHashMap::with_capacity_and_hasher(expected, Default::default());
         let mut vertices = Vec::with_capacity(expected);
         if placement == Placement::Relocated {
             vertices = h.points.clone();
-            for key in h.occupied_sorted() {
+            // In any order: the index is the same.
+            for key in h.occupied_unordered() {
                 if let [p] = h.occupants(key) {
                     if h.is_full_leaf(key) {
                         index.insert(key.canonical(), *p);
@@ -219,8 +353,29 @@ impl<'a> Builder<'a> {
             keys,
             index,
             vertices,
-            triangles: Vec::with_capacity(2 * expected),
+            triangles: Vec::with_capacity(if whole { 2 * expected } else { 0 }),
             used,
+        }
+    }
+
+    /// True when the triangle with canonical keys `keys` (found in the index as `found`)
+    /// lies around a dropped centre, so that the patch replaces it.
+    fn is_dropped(&self, keys: &[Key; 3], found: &[Option<u32>; 3]) -> bool {
+        if self.dropped.is_empty() {
+            return false;
+        }
+        if self.marked {
+            found.contains(&Some(DROPPED))
+        } else {
+            keys.iter().any(|k| self.dropped.contains(k))
+        }
+    }
+
+    /// Where the centre with canonical key `key` goes.
+    fn place(&self, key: Key) -> Point {
+        match self.moved.get(&key) {
+            Some(&p) => p,
+            None => self.h.lattice.center(key),
         }
     }
 
@@ -230,15 +385,8 @@ impl<'a> Builder<'a> {
         }
         let keys = tri.map(|c| c.canonical());
         let found = keys.map(|k| self.index.get(&k).copied());
-        if !self.dropped.is_empty() {
-            let dropped = if self.marked {
-                found.contains(&Some(DROPPED))
-            } else {
-                keys.iter().any(|k| self.dropped.contains(k))
-            };
-            if dropped {
-                return;
-            }
+        if self.is_dropped(&keys, &found) {
+            return;
         }
         let t = [0, 1, 2].map(|m| match found[m] {
             Some(v) => {
@@ -270,16 +418,47 @@ impl<'a> Builder<'a> {
 
     /// A new vertex for the canonical key `key` (not in the index, or a dropped centre).
     fn new_vertex(&mut self, key: Key) -> u32 {
+        let p = self.place(key);
+        self.push_vertex(key, p)
+    }
+
+    /// A new vertex for `key` at `p`.
+    fn push_vertex(&mut self, key: Key, p: Point) -> u32 {
         let v = self.vertices.len() as u32;
-        let p = match self.moved.get(&key) {
-            Some(&p) => p,
-            None => self.h.lattice.center(key),
-        };
         self.vertices.push(p);
         self.keys.push(key);
         self.used.push(true);
         self.index.insert(key, v);
         v
+    }
+
+    /// Appends the triangles of `part` (the next part of the recursion in emission order),
+    /// numbering its vertices that are new here in the order the part met them.
+    fn absorb(&mut self, part: Part) {
+        let map: Vec<u32> = part
+            .vertices
+            .iter()
+            .map(|&(key, p)| match self.index.get(&key) {
+                Some(&v) => {
+                    debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
+                    self.used[v as usize] = true;
+                    v
+                }
+                None => self.push_vertex(key, p),
+            })
+            .collect();
+        self.triangles.reserve(part.triangles.len());
+        for t in part.triangles {
+            let t = t.map(|v| {
+                if v & LOCAL != 0 {
+                    map[(v & !LOCAL) as usize]
+                } else {
+                    self.used[v as usize] = true;
+                    v
+                }
+            });
+            self.triangles.push(t);
+        }
     }
 
     /// Drops vertices no triangle uses (points of an unfinished refinement, all of them in
@@ -317,10 +496,99 @@ impl<'a> Builder<'a> {
     }
 }
 
+/// Marks a vertex number of a `Part` as its own (the rest are vertices of the builder's
+/// index, met before any part: the input points).
+const LOCAL: u32 = 1 << 31;
+
+/// The triangles one thread of `extract_all` emits for its subtrees, with the vertices it met
+/// that the builder's index did not hold, in the order it met them.
+#[derive(Default)]
+struct Part {
+    index: FxHashMap<Key, u32>,
+    vertices: Vec<(Key, Point)>,
+    triangles: Vec<[u32; 3]>,
+}
+
+impl Part {
+    /// `Builder::emit` against the builder's index as it was before any part.
+    fn emit(&mut self, base: &Builder, tri: [Key; 3]) {
+        if !tri.iter().all(|c| c.inside()) {
+            return;
+        }
+        let keys = tri.map(|c| c.canonical());
+        let found = keys.map(|k| base.index.get(&k).copied());
+        if base.is_dropped(&keys, &found) {
+            return;
+        }
+        let t = [0, 1, 2].map(|m| match found[m] {
+            Some(v) => v,
+            None => match self.index.get(&keys[m]) {
+                Some(&v) => v,
+                None => {
+                    let v = LOCAL | self.vertices.len() as u32;
+                    self.vertices.push((keys[m], base.place(keys[m])));
+                    self.index.insert(keys[m], v);
+                    v
+                }
+            },
+        });
+        self.triangles.push(t);
+    }
+}
+
 /// The first triangle that is not strictly counter-clockwise under exact orientation, if any.
 pub fn first_inverted(mesh: &TriMesh) -> Option<usize> {
     (0..mesh.triangles.len()).find(|&t| {
         let [a, b, c] = mesh.corners(t);
         orient2d(a, b, c) <= 0.0
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::hex::classify::rings;
+    use crate::hex::extended::{mesh_extended, relocations};
+    use crate::{Params, Pslg};
+
+    #[test]
+    fn the_dual_split_over_threads_is_the_serial_dual_byte_for_byte() {
+        // Clustered points (MOVED_CENTER_3 patches, dropped centres, moved ring cells) and
+        // a point near the root's edge.
+        let mut x: u64 = 0x853c_49e6_748f_ea9b;
+        let mut pts = Vec::new();
+        for n in 0..120 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let (u, v) = (
+                (x >> 11) as f64 / (1u64 << 53) as f64,
+                (x % 1000) as f64 / 1000.0,
+            );
+            let s = if n % 3 == 0 { 0.05 } else { 1.0 };
+            pts.push([u * s, v * s]);
+        }
+        pts.push([0.999, 0.5]);
+        let run = mesh_extended(&Pslg::from_points(pts), &Params::default()).expect("meshes");
+        let h = &run.hierarchy;
+        let (moved, patch) = relocations(h, &rings(h));
+        assert!(
+            !patch.triangles.is_empty(),
+            "the input makes MOVED_CENTER_3 patches"
+        );
+        for placement in [Placement::Relocated, Placement::Plain] {
+            let serial = extract_where(h, placement, &moved, &patch, true, |_| true);
+            let split = extract_all_from(h, placement, &moved, &patch, 0);
+            assert!(!serial.0.triangles.is_empty());
+            assert_eq!(serial.0.triangles, split.0.triangles, "{placement:?}");
+            assert_eq!(serial.1, split.1, "{placement:?}");
+            let bits = |m: &TriMesh| -> Vec<[u64; 2]> {
+                m.vertices
+                    .iter()
+                    .map(|p| [p[0].to_bits(), p[1].to_bits()])
+                    .collect()
+            };
+            assert_eq!(bits(&serial.0), bits(&split.0), "{placement:?}");
+        }
+    }
 }

@@ -84,7 +84,7 @@ use crate::error::{Error, InputError, Result};
 use crate::geom::{incircle, orient2d, Point};
 use crate::hex::blossom;
 use crate::hex::classify::{
-    classify, fin_class, rings, subdivided_neighbours, Class, FinStrip, Rings, Role,
+    classify, fin_class, rings, subdivided_and_neighbours, Class, FinStrip, Rings, Role,
 };
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
@@ -293,7 +293,11 @@ fn apply_placed(moved: &mut FxHashMap<Key, Point>, state: &RingState) {
 /// `second_corner` shifted towards their second corner, then the contested cells in
 /// `flipped` given their moved role.
 fn rings_with_flips(h: &Hierarchy, state: &RingState) -> Rings {
-    let mut r = rings(h);
+    with_flips(h, rings(h), state)
+}
+
+/// `rings_with_flips` from the rings `r` of `h` (a copy of the up-to-date `RingCache`).
+fn with_flips(h: &Hierarchy, mut r: Rings, state: &RingState) -> Rings {
     let mut owners: Vec<Key> = state.second_corner.iter().copied().collect();
     owners.sort_unstable();
     for owner in owners {
@@ -333,29 +337,29 @@ fn switch_corner(h: &Hierarchy, r: &mut Rings, owner: Key) {
     }
 }
 
-/// The rings of the occupied hexagons, recomputed only when the set of occupied hexagons
-/// changed: the rule loop asks for them after every batch of subdivisions, and most batches
-/// (fins spreading outwards) do not touch an occupied hexagon.
+/// The rings of the occupied hexagons, brought up to date only around the hexagons whose
+/// occupancy changed (the hierarchy logs them): the rule loop asks for them after every
+/// batch of subdivisions, and most batches (fins spreading outwards) do not touch an
+/// occupied hexagon. No pass over all occupied hexagons per batch.
 #[derive(Default)]
 struct RingCache {
-    occupied: Vec<Key>,
     rings: Option<Rings>,
 }
 
 impl RingCache {
-    fn get(&mut self, h: &Hierarchy) -> &Rings {
-        let occupied = h.occupied_sorted();
+    fn get(&mut self, h: &mut Hierarchy) -> &Rings {
         match &mut self.rings {
-            Some(r) if occupied != self.occupied => {
-                // Only the cells near hexagons that changed are claimed again (`Rings::update`).
-                r.update(h, &self.occupied, &occupied);
-                debug_assert!(same_rings(r, &rings(h)), "incremental rings differ");
-                self.occupied = occupied;
+            Some(r) => {
+                let changed = h.take_occupancy_changes();
+                if !changed.is_empty() {
+                    // Only the cells near hexagons that changed are claimed again.
+                    r.update_changed(h, changed);
+                    debug_assert!(same_rings(r, &rings(h)), "incremental rings differ");
+                }
             }
-            Some(_) => {}
             None => {
+                h.track_occupancy();
                 self.rings = Some(rings(h));
-                self.occupied = occupied;
             }
         }
         self.rings.get_or_insert_with(|| rings(h))
@@ -400,7 +404,8 @@ pub(crate) fn extend_and_verify(
         stats.rounds += 1;
         loop {
             h.check_time()?;
-            let actions = extended_actions(h, cache.get(h), &candidates);
+            let r = cache.get(h);
+            let actions = extended_actions(h, r, &candidates);
             if actions.is_empty() {
                 // The final local coarsening of Sec. 5.3, once, on the first complete
                 // refinement; the rules then run again around the blossoms (they find
@@ -439,7 +444,9 @@ pub(crate) fn extend_and_verify(
             }
             candidates = around(&h.log);
         }
-        let mut r = rings_with_flips(h, state);
+        let current = cache.get(h).clone();
+        let mut r = with_flips(h, current, state);
+        let settle_cells = SettleCells::new(h, &r);
         let bad = loop {
             h.check_time()?;
             let (mut mesh, mut keys, patch, movable) = match &changed {
@@ -476,8 +483,9 @@ pub(crate) fn extend_and_verify(
                     .as_ref()
                     .is_none_or(|m| m.contains(leaf_of_vertex(h, k)))
             };
-            stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, false, &movable);
-            stats.settled += settle_contested(h, &r, &mut mesh, &keys, l_min, true, &movable);
+            let w = &settle_cells;
+            stats.settled += settle_contested(h, &mut mesh, &keys, l_min, w, false, &movable);
+            stats.settled += settle_contested(h, &mut mesh, &keys, l_min, w, true, &movable);
             for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
                 if old != new {
                     state.placed.insert(keys[v], *new);
@@ -623,8 +631,17 @@ const PARALLEL_MIN: usize = 8192;
 /// `f` on consecutive chunks of `items`, one per available thread (at most four) when the
 /// list is long, in order.
 pub(crate) fn in_parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&[T]) -> R + Sync) -> Vec<R> {
+    in_parallel_from(items, PARALLEL_MIN, f)
+}
+
+/// `in_parallel` for lists of at least `min` items (fewer items of more work each).
+pub(crate) fn in_parallel_from<T: Sync, R: Send>(
+    items: &[T],
+    min: usize,
+    f: impl Fn(&[T]) -> R + Sync,
+) -> Vec<R> {
     let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
-    if threads < 2 || items.len() < PARALLEL_MIN {
+    if threads < 2 || items.len() < min {
         return vec![f(items)];
     }
     let size = items.len().div_ceil(threads);
@@ -652,11 +669,11 @@ fn actions_of(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
     for &key in candidates {
         // Only full leaves with fins have rules here: the fins (one lookup per direction)
         // rule most candidates out before the parents are looked at.
-        if !key.inside() || h.is_subdivided(key) {
+        if !key.inside() {
             continue;
         }
-        let mask = subdivided_neighbours(h, key);
-        if mask == 0 || !h.is_full_leaf(key) {
+        let (subdivided, mask) = subdivided_and_neighbours(h, key);
+        if subdivided || mask == 0 || !h.is_full_leaf(key) {
             continue;
         }
         let (class, strip) = fin_class(mask);
@@ -786,11 +803,11 @@ fn moved_centre(h: &Hierarchy, key: Key, class: Class, strip: FinStrip) -> Optio
 /// The MOVED_CENTER_1/2 full leaf with fins of `key`'s level adjacent to it, with its class
 /// and strip.
 fn moved_neighbour(h: &Hierarchy, n: Key) -> Option<(Class, FinStrip)> {
-    if !n.inside() || h.is_subdivided(n) {
+    if !n.inside() {
         return None;
     }
-    let mask = subdivided_neighbours(h, n);
-    if mask == 0 || !h.is_full_leaf(n) {
+    let (subdivided, mask) = subdivided_and_neighbours(h, n);
+    if subdivided || mask == 0 || !h.is_full_leaf(n) {
         return None;
     }
     match fin_class(mask) {
@@ -973,46 +990,28 @@ impl AngleFilter {
 /// Returns the number of moves.
 fn settle_contested(
     h: &Hierarchy,
-    r: &Rings,
     mesh: &mut TriMesh,
     keys: &[Key],
     l_min: f64,
+    wanted: &SettleCells,
     with_neighbours: bool,
     movable: &dyn Fn(Key) -> bool,
 ) -> u64 {
-    if r.contested.is_empty() && !with_neighbours {
+    if wanted.contested.is_empty() && !with_neighbours {
         return 0;
     }
     let slack = SELF_CHECK_SLACK;
     // The vertices of contested cells, with their lattice centre and radius, sorted by key.
     let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
-    {
-        // The contested cells; in the second pass every ring cell: when a contested cell
-        // alone cannot reach a good position its neighbour in the same ring has to give way,
-        // and a moved ring cell may come closer to an OCCUPIED_2 point than l_min.
-        let mut wanted: FxHashMap<Key, Key> = FxHashMap::with_capacity_and_hasher(
-            if with_neighbours {
-                r.roles.len()
-            } else {
-                r.contested.len()
-            },
-            Default::default(),
-        );
-        for &c in r.contested.keys() {
-            wanted.insert(c.canonical(), c);
-        }
-        if with_neighbours {
-            for &c in r.roles.keys() {
-                if h.is_full_leaf(c) {
-                    wanted.insert(c.canonical(), c);
-                }
-            }
-        }
-        for (v, k) in keys.iter().enumerate() {
-            if let Some(&leaf) = wanted.get(k) {
-                if v >= h.points.len() && movable(*k) {
-                    cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
-                }
+    let wanted = if with_neighbours {
+        &wanted.ring
+    } else {
+        &wanted.contested
+    };
+    for (v, k) in keys.iter().enumerate() {
+        if let Some(&leaf) = wanted.get(k) {
+            if v >= h.points.len() && movable(*k) {
+                cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
             }
         }
     }
@@ -1052,49 +1051,72 @@ fn settle_contested(
     let incident = |n: usize| &incident_tris[start[n]..start[n + 1]];
     // Around vertex `v` placed at `p`: how far edges fall short of `l_min`, triangles breaking an angle
     // bound, their summed violation (degrees, negative) and the worst margin.
+    // A triangle that is counter-clockwise and whose angles are clearly within the bounds
+    // (`AngleFilter`) has a margin above -slack: it adds nothing to `bad` or `pen`, and
+    // its margin is measured only when `worst` is asked for.
+    let filter = AngleFilter::new();
+    let corners_at = |mesh: &TriMesh, t: usize, v: usize, p: Point| -> [Point; 3] {
+        let mut c = mesh.corners(t);
+        for (m, &w) in mesh.triangles[t].iter().enumerate() {
+            if w as usize == v {
+                c[m] = p;
+            }
+        }
+        c
+    };
     let score = |mesh: &TriMesh, tris: &[usize], v: usize, p: Point| -> Score {
         let mut sc = Score {
             short: 0.0,
             bad: 0,
             pen: 0.0,
-            worst: f64::INFINITY,
+            worst: None,
         };
         for &t in tris {
-            let mut c = mesh.corners(t);
-            for (m, &w) in mesh.triangles[t].iter().enumerate() {
-                if w as usize == v {
-                    c[m] = p;
-                }
-            }
+            let c = corners_at(mesh, t, v, p);
             sc.short += (0..3)
                 .map(|e| (l_min - crate::geom::dist(c[e], c[(e + 1) % 3])).max(0.0))
                 .sum::<f64>();
+            if orient2d(c[0], c[1], c[2]) > 0.0 && filter.clearly_within(&c) {
+                continue;
+            }
             let m = angle_margin(c);
             if m < -slack {
                 sc.pen += m;
                 sc.bad += 1;
             }
-            sc.worst = sc.worst.min(m);
         }
         sc
     };
+    // The smallest margin of the triangles around `v` at `p`, measured once per score.
+    let worst = |sc: &mut Score, mesh: &TriMesh, tris: &[usize], v: usize, p: Point| -> f64 {
+        *sc.worst.get_or_insert_with(|| {
+            tris.iter()
+                .map(|&t| angle_margin(corners_at(mesh, t, v, p)))
+                .fold(f64::INFINITY, f64::min)
+        })
+    };
     // The first pass never makes an edge shorter than l_min; the second, which moves cells
     // that are not contested, never adds a bad triangle around the moved cell either, and
-    // shortens no edge for the sake of an angle (or the reverse).
-    let better = |a: &Score, b: &Score| {
+    // shortens no edge for the sake of an angle (or the reverse). With as much violation,
+    // the larger smallest margin wins.
+    let better = |mesh: &TriMesh,
+                  tris: &[usize],
+                  v: usize,
+                  (a, pa): (&mut Score, Point),
+                  (b, pb): (&mut Score, Point)| {
         if with_neighbours && a.bad != b.bad {
             return a.bad < b.bad && a.short <= b.short;
         }
         if a.short != b.short {
             return a.short < b.short && (!with_neighbours || a.bad <= b.bad);
         }
-        a.pen > b.pen || (a.pen == b.pen && a.worst > b.worst)
+        a.pen > b.pen
+            || (a.pen == b.pen && worst(a, mesh, tris, v, pa) > worst(b, mesh, tris, v, pb))
     };
     // A triangle adds to `bad` or `short` in `score` exactly when it breaks an angle bound
     // by more than the slack or has an edge shorter than `l_min`: a cell none of whose
     // triangles does so scores (0, 0) and stays, so only the cells of flagged triangles are
     // scored (flags are refreshed around every move).
-    let filter = AngleFilter::new();
     let flag = |mesh: &TriMesh, t: usize| -> bool {
         let c = mesh.corners(t);
         (0..3).any(|e| crate::geom::dist(c[e], c[(e + 1) % 3]) < l_min)
@@ -1126,8 +1148,8 @@ fn settle_contested(
                 for dir in 0..if step == 0 { 1 } else { 24 } {
                     let a = (dir as f64 * 15.0).to_radians();
                     let p = [centre[0] + rho * a.cos(), centre[1] + rho * a.sin()];
-                    let sc = score(mesh, incident(n), v, p);
-                    if better(&sc, &best_score) {
+                    let mut sc = score(mesh, incident(n), v, p);
+                    if better(mesh, incident(n), v, (&mut sc, p), (&mut best_score, best)) {
                         (best_score, best) = (sc, p);
                     }
                 }
@@ -1216,7 +1238,7 @@ fn polish_rings(
             short: 0.0,
             bad: 0,
             pen: 0.0,
-            worst: f64::INFINITY,
+            worst: None,
         };
         for &t in &around_vertex[v] {
             let mut c = mesh.corners(t);
@@ -1233,7 +1255,6 @@ fn polish_rings(
                 sc.pen += m;
                 sc.bad += 1;
             }
-            sc.worst = sc.worst.min(m);
         }
         sc
     };
@@ -1295,13 +1316,43 @@ fn polish_rings(
     moves
 }
 
+/// The cells `settle_contested` may move, by the canonical key of their vertex: the
+/// contested cells; in the second pass every ring cell that is a full leaf, since when a
+/// contested cell alone cannot reach a good position its neighbour in the same ring has to
+/// give way, and a moved ring cell may come closer to an OCCUPIED_2 point than l_min. They
+/// depend only on which cells the rings hold (a flip or a corner switch changes roles, not
+/// cells), so they are listed once per set of rings, not once per check.
+struct SettleCells {
+    contested: FxHashMap<Key, Key>,
+    ring: FxHashMap<Key, Key>,
+}
+
+impl SettleCells {
+    fn new(h: &Hierarchy, r: &Rings) -> SettleCells {
+        let mut contested: FxHashMap<Key, Key> =
+            FxHashMap::with_capacity_and_hasher(r.contested.len(), Default::default());
+        for &c in r.contested.keys() {
+            contested.insert(c.canonical(), c);
+        }
+        let mut ring = contested.clone();
+        ring.reserve(r.roles.len());
+        for &c in r.roles.keys() {
+            if h.is_full_leaf(c) {
+                ring.insert(c.canonical(), c);
+            }
+        }
+        SettleCells { contested, ring }
+    }
+}
+
 /// How the triangles around one vertex fare (`settle_contested`).
 struct Score {
     /// Summed shortfall of the edges below `l_min`.
     short: f64,
     bad: usize,
     pen: f64,
-    worst: f64,
+    /// The smallest angle margin (`angle_margin`), when measured.
+    worst: Option<f64>,
 }
 
 /// The leaf of the vertex with canonical key `key`: the end of its chain of central children.

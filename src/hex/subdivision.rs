@@ -71,6 +71,9 @@ pub struct Hierarchy {
     level_limit: u8,
     /// The deepest level a hexagon has reached.
     deepest: u8,
+    /// Hexagons that started or stopped being occupied, while `track_occupancy` is on (the
+    /// extended rules bring their rings up to date from it).
+    occupancy_changes: Option<Vec<Key>>,
 }
 
 impl Hierarchy {
@@ -90,6 +93,7 @@ impl Hierarchy {
             guaranteed_level: guaranteed,
             level_limit: guaranteed,
             deepest: 0,
+            occupancy_changes: None,
             lattice,
             points,
             subdivided: KeySet::with_capacity(expected),
@@ -113,6 +117,13 @@ impl Hierarchy {
         self.subdivided.contains(&key)
     }
 
+    /// Whether `key` is subdivided, and the directions (bit d: `DIRS[d]`) in which its
+    /// same-level neighbour is, inside the bounding hexagon or not.
+    pub fn subdivided_neighbourhood(&self, key: Key) -> (bool, u8) {
+        let m = self.subdivided.neighbourhood(key);
+        (m & 0x40 != 0, m & 0x3f)
+    }
+
     /// The subdivided hexagons, sorted.
     pub fn subdivided_sorted(&self) -> Vec<Key> {
         let mut v: Vec<Key> = self.subdivided.iter().collect();
@@ -123,6 +134,11 @@ impl Hierarchy {
     /// The input points assigned to a leaf.
     pub fn occupants(&self, key: Key) -> &[u32] {
         self.occupants.get(&key).map_or(&[], |v| v.as_slice())
+    }
+
+    /// The occupied leaves, in no particular order.
+    pub fn occupied_unordered(&self) -> impl Iterator<Item = Key> + '_ {
+        self.occupants.keys().copied()
     }
 
     /// The occupied leaves, sorted.
@@ -142,7 +158,25 @@ impl Hierarchy {
         let id = self.points.len() as u32;
         self.points.push(p);
         self.occupants.entry(leaf).or_default().push(id);
+        if let Some(log) = &mut self.occupancy_changes {
+            log.push(leaf);
+        }
         id
+    }
+
+    /// Starts (or restarts, forgetting what was logged) the log of hexagons whose occupancy
+    /// changes (`take_occupancy_changes`).
+    pub(crate) fn track_occupancy(&mut self) {
+        self.occupancy_changes = Some(Vec::new());
+    }
+
+    /// The hexagons that started or stopped being occupied since tracking began or since the
+    /// last call (in any order, with repeats); empty when tracking is off.
+    pub(crate) fn take_occupancy_changes(&mut self) -> Vec<Key> {
+        self.occupancy_changes
+            .as_mut()
+            .map(std::mem::take)
+            .unwrap_or_default()
     }
 
     /// What the cell `key` currently is.
@@ -243,6 +277,12 @@ impl Hierarchy {
             for p in pts {
                 let child = self.locate_child(key, self.points[p as usize]);
                 self.occupants.entry(child).or_default().push(p);
+                if let Some(log) = &mut self.occupancy_changes {
+                    log.push(child);
+                }
+            }
+            if let Some(log) = &mut self.occupancy_changes {
+                log.push(key);
             }
         }
         self.schedule_around(key);

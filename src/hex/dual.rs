@@ -379,15 +379,22 @@ impl<'a> Builder<'a> {
         }
     }
 
-    fn emit(&mut self, tri: [Key; 3]) {
+    /// The canonical keys of the lattice triangle `tri` and the vertices the index holds for
+    /// them, or `None` when it is not a triangle of the dual: a cell lies outside the
+    /// bounding hexagon, or the patch replaces it.
+    fn lookup(&self, tri: [Key; 3]) -> Option<([Key; 3], [Option<u32>; 3])> {
         if !tri.iter().all(|c| c.inside()) {
-            return;
+            return None;
         }
         let keys = tri.map(|c| c.canonical());
         let found = keys.map(|k| self.index.get(&k).copied());
-        if self.is_dropped(&keys, &found) {
+        (!self.is_dropped(&keys, &found)).then_some((keys, found))
+    }
+
+    fn emit(&mut self, tri: [Key; 3]) {
+        let Some((keys, found)) = self.lookup(tri) else {
             return;
-        }
+        };
         let t = [0, 1, 2].map(|m| match found[m] {
             Some(v) => {
                 self.used[v as usize] = true;
@@ -512,14 +519,9 @@ struct Part {
 impl Part {
     /// `Builder::emit` against the builder's index as it was before any part.
     fn emit(&mut self, base: &Builder, tri: [Key; 3]) {
-        if !tri.iter().all(|c| c.inside()) {
+        let Some((keys, found)) = base.lookup(tri) else {
             return;
-        }
-        let keys = tri.map(|c| c.canonical());
-        let found = keys.map(|k| base.index.get(&k).copied());
-        if base.is_dropped(&keys, &found) {
-            return;
-        }
+        };
         let t = [0, 1, 2].map(|m| match found[m] {
             Some(v) => v,
             None => match self.index.get(&keys[m]) {

@@ -88,6 +88,10 @@ pub struct AngleSeries {
     pub histogram: Vec<u64>,
     /// The angles the mesher promises to stay within, drawn as vertical lines.
     pub bounds: Vec<f64>,
+    /// The smallest and largest angle measured: the curve is drawn between them, so that a
+    /// bin that straddles a bound (43°–44° holding angles from 43.9°) is not drawn at its
+    /// centre, across the bound it keeps.
+    pub range: Option<(f64, f64)>,
 }
 
 impl AngleSeries {
@@ -243,10 +247,7 @@ fn draw_angles<DB: DrawingBackend>(
         .draw()?;
     for (s, f) in series.iter().zip(&fractions) {
         let color = mesher_color(&s.mesher);
-        let points = f
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| (i as f64 + 0.5, v.max(floor)));
+        let points = curve_points(f, s.range, floor);
         chart
             .draw_series(LineSeries::new(points, color.stroke_width(2)))?
             .label(legend_label(s))
@@ -270,6 +271,25 @@ fn draw_angles<DB: DrawingBackend>(
         .position(SeriesLabelPosition::UpperRight)
         .draw()?;
     root.present()
+}
+
+/// The points of one curve: a point per bin at its centre, on the floor when the bin is empty;
+/// with the measured `range`, only the bins that meet it, at their centre moved into it.
+fn curve_points(fractions: &[f64], range: Option<(f64, f64)>, floor: f64) -> Vec<(f64, f64)> {
+    fractions
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &v)| {
+            let centre = i as f64 + 0.5;
+            match range {
+                None => Some((centre, v.max(floor))),
+                Some((lo, hi)) if i as f64 <= hi && i as f64 + 1.0 > lo => {
+                    Some((centre.clamp(lo, hi), v.max(floor)))
+                }
+                Some(_) => None,
+            }
+        })
+        .collect()
 }
 
 /// The y range of the angle plot: from below the smallest non-empty bin to above the peak.
@@ -423,6 +443,7 @@ mod tests {
             mesher: "hex".into(),
             histogram: h,
             bounds: vec![],
+            range: None,
         };
         let f = s.fractions();
         assert_eq!(f[44], 0.75);
@@ -431,6 +452,7 @@ mod tests {
             mesher: "x".into(),
             histogram: vec![0; 180],
             bounds: vec![],
+            range: None,
         };
         assert!(z.fractions().iter().all(|&v| v == 0.0));
     }
@@ -447,16 +469,19 @@ mod tests {
                 mesher: "saalfeld".into(),
                 histogram: h.clone(),
                 bounds: vec![],
+                range: None,
             },
             AngleSeries {
                 mesher: "cgal-conforming".into(),
                 histogram: h,
                 bounds: vec![],
+                range: None,
             },
             AngleSeries {
                 mesher: "empty".into(),
                 histogram: vec![0; 180],
                 bounds: vec![],
+                range: None,
             },
         ];
         let notes = angle_notes(&series);
@@ -480,6 +505,23 @@ mod tests {
     }
 
     #[test]
+    fn a_curve_with_its_measured_range_stays_inside_it() {
+        let mut f = vec![0.0; 180];
+        f[43] = 0.25;
+        f[60] = 0.5;
+        f[90] = 0.25;
+        let pts = curve_points(&f, Some((43.9, 90.0)), 1e-6);
+        assert_eq!(pts.first(), Some(&(43.9, 0.25)));
+        assert_eq!(pts.last(), Some(&(90.0, 0.25)));
+        assert!(pts.iter().all(|p| (43.9..=90.0).contains(&p.0)));
+        assert_eq!(pts.len(), 90 - 43 + 1);
+        // Without a range every bin is drawn at its centre.
+        let all = curve_points(&f, None, 1e-6);
+        assert_eq!(all.len(), 180);
+        assert_eq!(all[43], (43.5, 0.25));
+    }
+
+    #[test]
     fn angle_plot_writes_an_svg_with_legend_and_a_png() {
         let dir = temp_dir("angles");
         let mut h = vec![0u64; 180];
@@ -491,11 +533,13 @@ mod tests {
                 mesher: "hex".into(),
                 histogram: h.clone(),
                 bounds: vec![43.8979, 90.0],
+                range: None,
             },
             AngleSeries {
                 mesher: "triangle".into(),
                 histogram: h,
                 bounds: vec![30.0],
+                range: None,
             },
         ];
         let files = angle_plot(&dir, "angles-test", "angles of test", &series).unwrap();

@@ -99,6 +99,10 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
                     mesher: m.name().to_string(),
                     histogram: h.clone(),
                     bounds: outcome.bounds.clone(),
+                    range: outcome.verdict.as_ref().and_then(|v| {
+                        let m = &v.metrics;
+                        Some((m.min_angle?.value, m.max_angle?.value))
+                    }),
                 });
             }
             if PICTURED.contains(&name.as_str()) {

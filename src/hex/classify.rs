@@ -268,27 +268,12 @@ impl Rings {
         self.conflicts = c;
     }
 
-    /// Brings rings built for the occupied hexagons `old` (sorted) up to date with `h`, whose
-    /// occupied hexagons are `new` (sorted): only the cells within two of a hexagon that
-    /// stopped or started being occupied are claimed again, by every occupied hexagon within
-    /// two of them in key order, which gives each of them what `rings` gives it.
-    pub fn update(&mut self, h: &Hierarchy, old: &[Key], new: &[Key]) {
-        let in_new = |k: &Key| {
-            new.binary_search_by_key(&k.packed(), |x| x.packed())
-                .is_ok()
-        };
-        let in_old = |k: &Key| {
-            old.binary_search_by_key(&k.packed(), |x| x.packed())
-                .is_ok()
-        };
-        let removed: Vec<Key> = old.iter().copied().filter(|k| !in_new(k)).collect();
-        let added: Vec<Key> = new.iter().copied().filter(|k| !in_old(k)).collect();
-        self.apply_changes(h, removed, added);
-    }
-
-    /// `update` from the hexagons whose occupancy may have changed since these rings were
-    /// made (`Hierarchy::take_occupancy_changes`, in any order, with repeats), without
-    /// listing every occupied hexagon.
+    /// Brings the rings up to date with `h` from the hexagons whose occupancy may have
+    /// changed since they were made (`Hierarchy::take_occupancy_changes`, in any order, with
+    /// repeats), without listing every occupied hexagon: only the cells within two of a
+    /// hexagon that stopped or started being occupied are claimed again, by every occupied
+    /// hexagon within two of them in key order, which gives each of them what `rings` gives
+    /// it.
     pub fn update_changed(&mut self, h: &Hierarchy, mut changed: Vec<Key>) {
         changed.sort_unstable_by_key(|k| k.packed());
         changed.dedup();
@@ -305,8 +290,8 @@ impl Rings {
         self.apply_changes(h, removed, added);
     }
 
-    /// `update` once the hexagons that stopped (`removed`) and started (`added`) being
-    /// occupied are known, each list sorted.
+    /// `update_changed` once the hexagons that stopped (`removed`) and started (`added`)
+    /// being occupied are known, each list sorted.
     fn apply_changes(&mut self, h: &Hierarchy, removed: Vec<Key>, added: Vec<Key>) {
         if removed.is_empty() && added.is_empty() {
             return;

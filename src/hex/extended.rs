@@ -667,8 +667,9 @@ pub(crate) fn in_parallel_from<T: Sync, R: Send>(
 fn actions_of(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
     let mut acts = Vec::new();
     for &key in candidates {
-        // Only full leaves with fins have rules here: the fins (one lookup per direction)
-        // rule most candidates out before the parents are looked at.
+        // Only full leaves with fins have rules here: the fins (the cell and its neighbours
+        // from one block lookup, mostly) rule most candidates out before the parents are
+        // looked at.
         if !key.inside() {
             continue;
         }

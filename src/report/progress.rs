@@ -61,6 +61,24 @@ impl Progress {
         }
     }
 
+    /// Runs `run`, which announces each of its steps by label as it starts it: a label
+    /// finishes the step before it (with that step's label as outcome), and the last step
+    /// is finished when `run` returns.
+    pub fn labelled<R>(&mut self, run: impl FnOnce(&mut dyn FnMut(&str)) -> R) -> R {
+        let mut last = String::new();
+        let out = run(&mut |label: &str| {
+            if !last.is_empty() {
+                self.finish_step(&last);
+            }
+            self.start(label);
+            last = label.to_string();
+        });
+        if !last.is_empty() {
+            self.finish_step(&last);
+        }
+        out
+    }
+
     /// A line that is not a step (a file written, a phase begun).
     pub fn note(&self, line: &str) {
         match &self.bar {
@@ -95,6 +113,21 @@ mod tests {
         p.start("b");
         p.finish_step("b ok");
         assert_eq!(p.done(), 2);
+        p.finish();
+    }
+
+    #[test]
+    fn labelled_steps_each_count_once_the_last_when_the_run_ends() {
+        let mut p = Progress::new(3);
+        let out = p.labelled(|step| {
+            for label in ["a", "b", "c"] {
+                step(label);
+            }
+            7
+        });
+        assert_eq!((out, p.done()), (7, 3));
+        assert_eq!(p.labelled(|_| ()), ());
+        assert_eq!(p.done(), 3, "a run that starts nothing finishes nothing");
         p.finish();
     }
 }

@@ -173,18 +173,9 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
     } else {
         Vec::new()
     };
-    let mut last_label = String::new();
-    let seed_rows =
-        super::seeds::seed_rows(&exe, &seed_datasets, &mesher_names, opts.timeout, |label| {
-            if !last_label.is_empty() {
-                progress.finish_step(&last_label);
-            }
-            progress.start(label);
-            last_label = label.to_string();
-        });
-    if !last_label.is_empty() {
-        progress.finish_step(&last_label);
-    }
+    let seed_rows = progress.labelled(|step| {
+        super::seeds::seed_rows(&exe, &seed_datasets, &mesher_names, opts.timeout, step)
+    });
     write_csv(
         &opts.out.join("seeds.csv"),
         super::seeds::SEED_COLUMNS,
@@ -211,17 +202,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
     art.pslg = with_pslg;
     let mut readme_text = readme::render(&rows, &max_angles, &art, &facts);
     if with_lsb {
-        let mut last = String::new();
-        let lsb_rows = super::lsb::lsb_rows(&exe, &inputs, opts.timeout, |label| {
-            if !last.is_empty() {
-                progress.finish_step(&last);
-            }
-            progress.start(label);
-            last = label.to_string();
-        });
-        if !last.is_empty() {
-            progress.finish_step(&last);
-        }
+        let lsb_rows =
+            progress.labelled(|step| super::lsb::lsb_rows(&exe, &inputs, opts.timeout, step));
         write_csv(
             &opts.out.join("lsb.csv"),
             super::lsb::LSB_COLUMNS,
@@ -230,18 +212,9 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         readme_text.push_str(&super::lsb::render(&lsb_rows));
     }
     if with_saalfeld {
-        let mut last = String::new();
-        let saalfeld_rows =
-            super::saalfeld::saalfeld_rows(&exe, &inputs, &rows, opts.timeout, |label| {
-                if !last.is_empty() {
-                    progress.finish_step(&last);
-                }
-                progress.start(label);
-                last = label.to_string();
-            });
-        if !last.is_empty() {
-            progress.finish_step(&last);
-        }
+        let saalfeld_rows = progress.labelled(|step| {
+            super::saalfeld::saalfeld_rows(&exe, &inputs, &rows, opts.timeout, step)
+        });
         write_csv(
             &opts.out.join("saalfeld.csv"),
             super::saalfeld::SAALFELD_COLUMNS,
@@ -250,24 +223,16 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         readme_text.push_str(&super::saalfeld::render(&saalfeld_rows));
     }
     if with_pslg {
-        let mut last = String::new();
-        let pslg_rows = super::pslg::pslg_rows(
-            &exe,
-            &examples,
-            &segment_meshers,
-            opts.runs,
-            opts.timeout,
-            |label| {
-                if !last.is_empty() {
-                    progress.finish_step(&last);
-                }
-                progress.start(label);
-                last = label.to_string();
-            },
-        );
-        if !last.is_empty() {
-            progress.finish_step(&last);
-        }
+        let pslg_rows = progress.labelled(|step| {
+            super::pslg::pslg_rows(
+                &exe,
+                &examples,
+                &segment_meshers,
+                opts.runs,
+                opts.timeout,
+                step,
+            )
+        });
         write_csv(
             &opts.out.join("pslg.csv"),
             super::pslg::PSLG_COLUMNS,

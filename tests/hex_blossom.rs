@@ -16,13 +16,22 @@ use hexmesh::mesher::Budget;
 use hexmesh::quality::{verdict as quality_verdict, Bounds};
 use hexmesh::{Hexagon, Params};
 
-/// A hierarchy whose leaves are all of level `level` (no points).
-fn uniform(level: u8) -> Hierarchy {
-    let lattice = Lattice::new(Hexagon {
+/// The lattice of the unit hexagon at the origin.
+fn unit_lattice() -> Lattice {
+    Lattice::new(Hexagon {
         center: [0.0, 0.0],
         circumradius: 1.0,
-    });
-    let mut h = Hierarchy::new(lattice, Vec::new(), Budget::default());
+    })
+}
+
+/// A hierarchy whose leaves are all of level `level` (no points).
+fn uniform(level: u8) -> Hierarchy {
+    uniform_with(level, Vec::new())
+}
+
+/// `uniform` with the input points `points`.
+fn uniform_with(level: u8, points: Vec<hexmesh::Point>) -> Hierarchy {
+    let mut h = Hierarchy::new(unit_lattice(), points, Budget::default());
     for k in 0..level {
         let span = 2i64 << k;
         for i in -span..=span {
@@ -119,23 +128,8 @@ fn anything_but_a_plain_region_within_the_four_ring_prevents_the_blossom() {
     h.subdivide(Key::new(4, c.i + 6, c.j)).expect("subdivides");
     assert!(can_form(&h, &rings(&h), top), "fins beyond the 4-ring");
     // A point in the 4-ring: occupied and ringed cells are not FIXED_CENTER_REGULAR.
-    let lattice = Lattice::new(Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    });
-    let far = lattice.center(Key::new(4, c.i + 4, c.j));
-    let mut h = Hierarchy::new(lattice, vec![far], Budget::default());
-    for k in 0..4u8 {
-        let span = 2i64 << k;
-        for i in -span..=span {
-            for j in -span..=span {
-                let key = Key::new(k, i, j);
-                if key.inside() && h.is_full_leaf(key) {
-                    h.subdivide(key).expect("subdivides");
-                }
-            }
-        }
-    }
+    let far = unit_lattice().center(Key::new(4, c.i + 4, c.j));
+    let h = uniform_with(4, vec![far]);
     assert!(h.is_occupied(Key::new(4, c.i + 4, c.j)));
     assert!(!can_form(&h, &rings(&h), top), "a point in the 4-ring");
     // A top whose neighbour is not subdivided has no 37 cells to coarsen.

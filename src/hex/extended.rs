@@ -686,7 +686,7 @@ fn actions_of(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
         // A moved centre in the 1-ring of OCCUPIED_1 or the 1- or 2-ring of OCCUPIED_2; and
         // (departure) a hexagon with fins centred on the boundary of the bounding hexagon,
         // whose centre cannot move inwards without spoiling the boundary triangles.
-        if r.roles.contains_key(&key) || key.on_boundary() {
+        if (r.marked.contains(&key) && r.roles.contains_key(&key)) || key.on_boundary() {
             acts.push((key, Why::Other));
             continue;
         }

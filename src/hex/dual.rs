@@ -13,7 +13,7 @@
 //! hexagons of a kept triangle are not subdivided further.
 
 use crate::geom::{orient2d, Point};
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyIndex};
 use crate::hex::mc3::Patch;
 use crate::hex::region::Region;
 use crate::hex::subdivision::Hierarchy;
@@ -142,7 +142,7 @@ fn extract_all_from(
                 }
             }
             // Only the vertices and triangles are merged.
-            part.index = FxHashMap::default();
+            part.index = KeyIndex::default();
             part
         })
     };
@@ -287,8 +287,9 @@ fn midpoint(a: Key, b: Key) -> Key {
     Key::new(a.k + 1, a.i + b.i, a.j + b.j)
 }
 
-/// The index entry of a dropped centre that has no vertex yet.
-const DROPPED: u32 = u32::MAX;
+/// The index entry of a dropped centre that has no vertex yet (`KeyIndex` keeps `u32::MAX`
+/// for empty slots).
+const DROPPED: u32 = u32::MAX - 1;
 
 struct Builder<'a> {
     h: &'a Hierarchy,
@@ -300,7 +301,7 @@ struct Builder<'a> {
     /// Canonical key of each vertex.
     keys: Vec<Key>,
     /// Dual vertex of each canonical centre.
-    index: FxHashMap<Key, u32>,
+    index: KeyIndex,
     vertices: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     used: Vec<bool>,
@@ -318,7 +319,7 @@ impl<'a> Builder<'a> {
         // rehashing a table of millions of entries. A part of the dual (`whole` false) is
         // small: its tables grow as needed.
         let expected = if whole { h.full_leaves } else { 0 } + h.points.len();
-        let mut index = FxHashMap::with_capacity_and_hasher(expected, Default::default());
+        let mut index = KeyIndex::with_capacity(expected);
         let mut vertices = Vec::with_capacity(expected);
         if placement == Placement::Relocated {
             vertices = h.points.clone();
@@ -333,14 +334,14 @@ impl<'a> Builder<'a> {
         }
         let used = vec![false; vertices.len()];
         let mut keys = vec![Key::ROOT; vertices.len()];
-        for (&key, &v) in &index {
+        for (key, v) in index.iter() {
             keys[v as usize] = key;
         }
         // Dropped centres are marked in the index: the lookup that finds a vertex also tells
         // a triangle of a dropped star (`emit`); the patch gives them vertices (`vertex`).
         let mut marked = true;
         for &key in dropped {
-            if *index.entry(key).or_insert(DROPPED) != DROPPED {
+            if index.get_or_insert(key, DROPPED) != DROPPED {
                 // A dropped centre that already is a vertex (an input point): test the set.
                 marked = false;
             }
@@ -387,7 +388,7 @@ impl<'a> Builder<'a> {
             return None;
         }
         let keys = tri.map(|c| c.canonical());
-        let found = keys.map(|k| self.index.get(&k).copied());
+        let found = keys.map(|k| self.index.get(&k));
         (!self.is_dropped(&keys, &found)).then_some((keys, found))
     }
 
@@ -415,7 +416,7 @@ impl<'a> Builder<'a> {
     fn vertex(&mut self, cell: Key) -> u32 {
         let key = cell.canonical();
         match self.index.get(&key) {
-            Some(&v) if v != DROPPED => {
+            Some(v) if v != DROPPED => {
                 self.used[v as usize] = true;
                 v
             }
@@ -446,7 +447,7 @@ impl<'a> Builder<'a> {
             .vertices
             .iter()
             .map(|&(key, p)| match self.index.get(&key) {
-                Some(&v) => {
+                Some(v) => {
                     debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
                     self.used[v as usize] = true;
                     v
@@ -511,7 +512,7 @@ const LOCAL: u32 = 1 << 31;
 /// that the builder's index did not hold, in the order it met them.
 #[derive(Default)]
 struct Part {
-    index: FxHashMap<Key, u32>,
+    index: KeyIndex,
     vertices: Vec<(Key, Point)>,
     triangles: Vec<[u32; 3]>,
 }
@@ -525,7 +526,7 @@ impl Part {
         let t = [0, 1, 2].map(|m| match found[m] {
             Some(v) => v,
             None => match self.index.get(&keys[m]) {
-                Some(&v) => v,
+                Some(v) => v,
                 None => {
                     let v = LOCAL | self.vertices.len() as u32;
                     self.vertices.push((keys[m], base.place(keys[m])));

@@ -435,8 +435,134 @@ impl KeySet {
     }
 }
 
+/// A map from keys to `u32` kept as blocks of 4 × 4 cells of one level, one cache line each,
+/// in the order they were first used: the dual's recursion meets a vertex's neighbours next,
+/// so most lookups land in a block it has just used instead of a random slot of a table of
+/// millions of entries, and the table of blocks is several times smaller. `u32::MAX` is not
+/// a value (it marks empty slots).
+#[derive(Debug, Clone, Default)]
+pub struct KeyIndex {
+    blocks: FxHashMap<Key, u32>,
+    slots: Vec<[u32; 16]>,
+    len: usize,
+}
+
+impl KeyIndex {
+    const EMPTY: u32 = u32::MAX;
+
+    pub fn with_capacity(keys: usize) -> KeyIndex {
+        KeyIndex {
+            blocks: FxHashMap::with_capacity_and_hasher(keys / 4 + 16, Default::default()),
+            slots: Vec::with_capacity(keys / 4 + 16),
+            len: 0,
+        }
+    }
+
+    /// The block of `key` and its slot there (`>>` and `&` floor negative coordinates).
+    fn slot(key: Key) -> (Key, usize) {
+        let block = Key::new(key.k, key.i >> 2, key.j >> 2);
+        (block, (((key.i & 3) << 2) | (key.j & 3)) as usize)
+    }
+
+    pub fn get(&self, key: &Key) -> Option<u32> {
+        let (block, n) = KeyIndex::slot(*key);
+        let b = *self.blocks.get(&block)?;
+        let v = self.slots[b as usize][n];
+        (v != KeyIndex::EMPTY).then_some(v)
+    }
+
+    /// The value of `key`, inserting `value` first when there is none.
+    pub fn get_or_insert(&mut self, key: Key, value: u32) -> u32 {
+        debug_assert_ne!(value, KeyIndex::EMPTY);
+        let (block, n) = KeyIndex::slot(key);
+        let slots = &mut self.slots;
+        let b = *self.blocks.entry(block).or_insert_with(|| {
+            slots.push([KeyIndex::EMPTY; 16]);
+            (slots.len() - 1) as u32
+        });
+        let v = &mut self.slots[b as usize][n];
+        if *v == KeyIndex::EMPTY {
+            *v = value;
+            self.len += 1;
+        }
+        *v
+    }
+
+    /// Sets the value of `key`.
+    pub fn insert(&mut self, key: Key, value: u32) {
+        debug_assert_ne!(value, KeyIndex::EMPTY);
+        let (block, n) = KeyIndex::slot(key);
+        let slots = &mut self.slots;
+        let b = *self.blocks.entry(block).or_insert_with(|| {
+            slots.push([KeyIndex::EMPTY; 16]);
+            (slots.len() - 1) as u32
+        });
+        let v = &mut self.slots[b as usize][n];
+        self.len += (*v == KeyIndex::EMPTY) as usize;
+        *v = value;
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Every key with its value, in no particular order.
+    pub fn iter(&self) -> impl Iterator<Item = (Key, u32)> + '_ {
+        self.blocks.iter().flat_map(move |(b, &at)| {
+            let slots = &self.slots[at as usize];
+            (0..16)
+                .filter(move |&n| slots[n] != KeyIndex::EMPTY)
+                .map(move |n| {
+                    let key = Key::new(
+                        b.k,
+                        (b.i << 2) | (n as i64 >> 2),
+                        (b.j << 2) | (n as i64 & 3),
+                    );
+                    (key, slots[n])
+                })
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_key_index_maps_exactly_what_was_inserted_with_the_first_or_last_value() {
+        let mut index = KeyIndex::default();
+        let mut reference = std::collections::BTreeMap::new();
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        for step in 0..4000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let key = Key::new(
+                (x % 3) as u8,
+                ((x >> 8) % 23) as i64 - 11,
+                ((x >> 20) % 23) as i64 - 11,
+            );
+            if x >> 40 & 1 == 0 {
+                let kept = *reference.entry(key).or_insert(step);
+                assert_eq!(index.get_or_insert(key, step), kept);
+            } else {
+                reference.insert(key, step);
+                index.insert(key, step);
+            }
+        }
+        assert_eq!(index.len(), reference.len());
+        for (key, &v) in &reference {
+            assert_eq!(index.get(key), Some(v), "{key:?}");
+        }
+        let mut listed: Vec<(Key, u32)> = index.iter().collect();
+        listed.sort();
+        let expected: Vec<(Key, u32)> = reference.into_iter().collect();
+        assert_eq!(listed, expected);
+        assert_eq!(index.get(&Key::new(0, 100, -100)), None);
+    }
+
     #[test]
     fn a_key_set_holds_exactly_what_was_inserted_and_not_removed() {
         let mut set = KeySet::default();

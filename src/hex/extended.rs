@@ -72,8 +72,10 @@
 //! comes back with `complete == false`, its centres unmoved.
 //!
 //! Work: a work list of the cells around each batch of subdivisions (`around`), the rings
-//! updated only around occupied hexagons that changed (`Rings::update`), the self-check over
-//! the whole dual once and then only near what changed (`region`); long candidate lists are
+//! updated only around occupied hexagons that changed (`Rings::update_changed`), the
+//! self-check over the whole dual once and then only near what changed (`region`), and the
+//! dual returned after local repairs spliced from the complete one and the repaired region's
+//! (`splice`) instead of extracted a second time; long candidate lists are
 //! classified on the machine's threads (`in_parallel`), with results that do not depend on
 //! the split. The figures (fuzz campaign, dataset counts, times) are in README.md and
 //! reports/.
@@ -136,6 +138,11 @@ pub struct ExtendedStats {
     pub polished: u64,
     /// OCCUPIED_2 rings shifted towards their second corner (`switch_corner`).
     pub corner_switches: u64,
+    /// 1 when the dual returned after local repairs was spliced from the last complete one
+    /// (`splice`) instead of extracted again whole.
+    pub spliced: u64,
+    /// 1 when a splice was refused (its seam did not close) and the dual extracted whole.
+    pub splice_refused: u64,
 }
 
 impl Mesher for Hex {
@@ -198,6 +205,15 @@ pub struct ExtendedRun {
     pub stats: ExtendedStats,
     /// The contested ring cells moved after all and the cells placed by `settle_contested`.
     pub rings: RingState,
+}
+
+impl ExtendedRun {
+    /// The relocated dual of the run's final subdivision extracted again, whole, with the
+    /// ring decisions of its self-check: the mesh a run returns without this second pass
+    /// (spliced from its last complete dual after local repairs) must be this one.
+    pub fn extract_again(&self) -> TriMesh {
+        final_dual(&self.hierarchy, &self.rings)
+    }
 }
 
 /// What the self-check decided about ring cells, beyond their class: kept so that a later
@@ -281,6 +297,153 @@ pub(crate) fn final_dual(h: &Hierarchy, state: &RingState) -> TriMesh {
     let (mut moved, patch) = relocations(h, &r);
     apply_placed(&mut moved, state);
     dual::extract_patched(h, Placement::Relocated, &moved, &patch).0
+}
+
+/// `splice` once local checks after a complete one have passed, from the complete dual kept
+/// then (`base`) and the region the last local check extracted; `None` when there is no
+/// complete dual to splice into, or the seam does not close (the caller extracts it whole).
+fn spliced(
+    h: &Hierarchy,
+    stats: &mut ExtendedStats,
+    base: Option<(TriMesh, Vec<Key>)>,
+    part: &TriMesh,
+    part_keys: &[Key],
+    inner: Option<&Region>,
+) -> Option<TriMesh> {
+    let whole = splice(h, base?, part, part_keys, inner?);
+    match whole {
+        Some(_) => stats.spliced += 1,
+        None => stats.splice_refused += 1,
+    }
+    whole
+}
+
+/// The whole dual after local repairs without a second pass over the whole hierarchy: the
+/// complete dual `old` (with the canonical key of each vertex) keeps its triangles whose
+/// vertices' leaves all lie outside `inner`, and takes from `part` (the dual of the repaired
+/// region, with its keys) the triangles with a vertex inside. Beyond the reach of the changed
+/// cells nothing changed (`region`), which is what the local checks rely on too; the splice
+/// checks it where it matters: the replaced and the new triangles must meet the kept ones
+/// along the same seam (their boundary edges between vertices outside `inner`, as directed
+/// edges between vertex keys), and every vertex outside `inner` that a new triangle uses must
+/// be a vertex of a replaced one, in the same place. `None` when not.
+/// Kept triangles and vertices keep their order (the input points stay the first vertices);
+/// the new ones follow in the order of `part`.
+pub(crate) fn splice(
+    h: &Hierarchy,
+    old: (TriMesh, Vec<Key>),
+    part: &TriMesh,
+    part_keys: &[Key],
+    inner: &Region,
+) -> Option<TriMesh> {
+    let (old, old_keys) = old;
+    let inside = |k: &Key| inner.contains(leaf_of_vertex(h, *k));
+    let old_in: Vec<bool> = old_keys.iter().map(inside).collect();
+    let part_in: Vec<bool> = part_keys.iter().map(inside).collect();
+    let TriMesh {
+        mut vertices,
+        triangles: old_triangles,
+    } = old;
+    let mut triangles = Vec::with_capacity(old_triangles.len());
+    // The vertices of the replaced triangles by key, and their directed edges.
+    let mut seam: FxHashMap<Key, u32> = FxHashMap::default();
+    let mut replaced: FxHashSet<(Key, Key)> = FxHashSet::default();
+    for t in old_triangles {
+        if t.iter().any(|&v| old_in[v as usize]) {
+            for e in 0..3 {
+                replaced.insert((old_keys[t[e] as usize], old_keys[t[(e + 1) % 3] as usize]));
+                seam.insert(old_keys[t[e] as usize], t[e]);
+            }
+        } else {
+            triangles.push(t);
+        }
+    }
+    let added: Vec<[u32; 3]> = part
+        .triangles
+        .iter()
+        .filter(|t| t.iter().any(|&v| part_in[v as usize]))
+        .copied()
+        .collect();
+    let mut new_edges: FxHashSet<(Key, Key)> = FxHashSet::default();
+    for t in &added {
+        for e in 0..3 {
+            new_edges.insert((part_keys[t[e] as usize], part_keys[t[(e + 1) % 3] as usize]));
+        }
+    }
+    // The seam: the boundary edges between vertices outside `inner` (an edge at an inside
+    // vertex can only be on the boundary of the whole dual, which may change there).
+    let boundary = |edges: &FxHashSet<(Key, Key)>| {
+        let mut b: Vec<(Key, Key)> = edges
+            .iter()
+            .filter(|&&(a, b)| !edges.contains(&(b, a)) && !inside(&a) && !inside(&b))
+            .copied()
+            .collect();
+        b.sort_unstable();
+        b
+    };
+    if boundary(&replaced) != boundary(&new_edges) {
+        return None;
+    }
+    let same =
+        |a: Point, b: Point| a[0].to_bits() == b[0].to_bits() && a[1].to_bits() == b[1].to_bits();
+    let mut map = vec![u32::MAX; part.vertices.len()];
+    for t in &added {
+        for &v in t {
+            let v = v as usize;
+            if map[v] != u32::MAX {
+                continue;
+            }
+            let p = part.vertices[v];
+            map[v] = match seam.get(&part_keys[v]) {
+                Some(&o) if same(vertices[o as usize], p) => o,
+                _ if !part_in[v] => return None,
+                // An input point whose hexagon was subdivided (its vertex key changed): it
+                // keeps its number, as in a whole extraction, where the points come first.
+                _ => match h.occupants(leaf_of_vertex(h, part_keys[v])) {
+                    &[i] if (i as usize) < h.points.len()
+                        && same(vertices[i as usize], p)
+                        && same(h.points[i as usize], p) =>
+                    {
+                        i
+                    }
+                    _ => {
+                        vertices.push(p);
+                        (vertices.len() - 1) as u32
+                    }
+                },
+            };
+        }
+    }
+    triangles.extend(added.iter().map(|t| t.map(|v| map[v as usize])));
+    // Vertices no triangle uses any more (inside `inner`, replaced) are dropped, the rest
+    // renumbered in order.
+    let mut used = vec![false; vertices.len()];
+    for t in &triangles {
+        for &v in t {
+            used[v as usize] = true;
+        }
+    }
+    if used.iter().all(|&u| u) {
+        return Some(TriMesh {
+            vertices,
+            triangles,
+        });
+    }
+    let mut renumber = vec![u32::MAX; vertices.len()];
+    let mut kept = Vec::with_capacity(vertices.len());
+    for (v, p) in vertices.into_iter().enumerate() {
+        if used[v] {
+            renumber[v] = kept.len() as u32;
+            kept.push(p);
+        }
+    }
+    for t in &mut triangles {
+        *t = t.map(|v| renumber[v as usize]);
+    }
+    Some(TriMesh {
+        vertices: kept,
+        triangles,
+    })
 }
 
 fn apply_placed(moved: &mut FxHashMap<Key, Point>, state: &RingState) {
@@ -381,8 +544,10 @@ fn same_rings(a: &Rings, b: &Rings) -> bool {
 /// repeated until the dual meets every bound. With `changed == None` the first check covers
 /// the whole dual and, when it passes, that dual is returned; otherwise (and after any
 /// repair) only the triangles near the cells changed since the last complete check are
-/// checked (`region`), and `None` says that the whole dual now passes and is still to be
-/// extracted (`final_dual`). `state` keeps the ring decisions of the self-check.
+/// checked (`region`). When they pass, the whole dual is spliced from the last complete one
+/// and the region's (`splice`); `None` says that the whole dual passes but is still to be
+/// extracted (`final_dual`): there was no complete check (incremental insertion), or the
+/// splice was refused. `state` keeps the ring decisions of the self-check.
 pub(crate) fn extend_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
@@ -400,6 +565,9 @@ pub(crate) fn extend_and_verify(
     if let Some(c) = &changed {
         state.forget_near(h, c);
     }
+    // The last complete dual that failed the check, with its vertex keys, once local repairs
+    // began: the whole dual they end with is spliced from it (`splice`).
+    let mut base: Option<(TriMesh, Vec<Key>)> = None;
     loop {
         stats.rounds += 1;
         loop {
@@ -449,13 +617,14 @@ pub(crate) fn extend_and_verify(
         let settle_cells = SettleCells::new(h, &r);
         let bad = loop {
             h.check_time()?;
-            let (mut mesh, mut keys, patch, movable) = match &changed {
+            let full = changed.is_none();
+            let (mut mesh, mut keys, patch, movable, inner) = match &changed {
                 None => {
                     let (mut moved, patch) = relocations(h, &r);
                     apply_placed(&mut moved, state);
                     let (mesh, keys) =
                         dual::extract_patched(h, Placement::Relocated, &moved, &patch);
-                    (mesh, keys, patch, None)
+                    (mesh, keys, patch, None, None)
                 }
                 Some(c) => {
                     // Relocations reach a little further than the triangles checked, so that
@@ -473,7 +642,9 @@ pub(crate) fn extend_and_verify(
                     );
                     // Only vertices whose every triangle is in this part of the dual may be
                     // placed by `settle_contested`.
-                    (mesh, keys, patch, Some(wide.within(REACH - 3)))
+                    // The vertices `splice` takes from this part of the dual.
+                    let inner = wide.within(REACH - 1);
+                    (mesh, keys, patch, Some(wide.within(REACH - 3)), Some(inner))
                 }
             };
             stats.checked_triangles += mesh.triangles.len() as u64;
@@ -491,19 +662,31 @@ pub(crate) fn extend_and_verify(
                     state.placed.insert(keys[v], *new);
                 }
             }
-            // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin.
-            for k in keys.iter_mut() {
+            // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin
+            // (`blamed` keeps the vertex keys this replaces, for `splice`).
+            let mut blamed = Vec::new();
+            for (v, k) in keys.iter_mut().enumerate() {
                 if let Some(&owner) = patch.fin_owner.get(k) {
+                    blamed.push((v, *k));
                     *k = owner;
                 }
             }
+            let unblame = |keys: &mut Vec<Key>| {
+                for &(v, k) in &blamed {
+                    keys[v] = k;
+                }
+            };
             let bad = offending_leaves(h, &mesh, &keys);
             stats.mc3_rejected += bad
                 .iter()
                 .filter(|b| b.vertices.iter().any(|v| patch.chain_cells.contains(v)))
                 .count() as u64;
             if bad.is_empty() {
-                return Ok(if changed.is_none() { Some(mesh) } else { None });
+                if full {
+                    return Ok(Some(mesh));
+                }
+                unblame(&mut keys);
+                return Ok(spliced(h, stats, base.take(), &mesh, &keys, inner.as_ref()));
             }
             // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
             // contested cells of the offending triangles take the moved role instead.
@@ -538,6 +721,10 @@ pub(crate) fn extend_and_verify(
                     c.extend((0..6).map(|d| owner.neighbor(d)));
                     stats.corner_switches += 1;
                 }
+                if full {
+                    unblame(&mut keys);
+                    base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
+                }
                 continue;
             }
             if flips.is_empty() {
@@ -550,6 +737,10 @@ pub(crate) fn extend_and_verify(
                 // when other triangles (elsewhere) still need a subdivision.
                 let moved = polish_rings(h, &r, &mut mesh, &keys, &tris, l_min, &movable);
                 if moved == 0 {
+                    if full {
+                        unblame(&mut keys);
+                        base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
+                    }
                     break bad;
                 }
                 stats.polished += moved;
@@ -560,7 +751,15 @@ pub(crate) fn extend_and_verify(
                 }
                 let again = offending_leaves(h, &mesh, &keys);
                 if again.is_empty() {
-                    return Ok(if changed.is_none() { Some(mesh) } else { None });
+                    if full {
+                        return Ok(Some(mesh));
+                    }
+                    unblame(&mut keys);
+                    return Ok(spliced(h, stats, base.take(), &mesh, &keys, inner.as_ref()));
+                }
+                if full {
+                    unblame(&mut keys);
+                    base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
                 }
                 break again;
             }
@@ -577,6 +776,10 @@ pub(crate) fn extend_and_verify(
                 state.placed.remove(&c.canonical());
                 changed.get_or_insert_with(Vec::new).push(c);
                 stats.ring_flips += 1;
+            }
+            if full {
+                unblame(&mut keys);
+                base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
             }
         };
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();

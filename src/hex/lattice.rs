@@ -471,35 +471,37 @@ impl KeyIndex {
         (v != KeyIndex::EMPTY).then_some(v)
     }
 
-    /// The value of `key`, inserting `value` first when there is none.
-    pub fn get_or_insert(&mut self, key: Key, value: u32) -> u32 {
-        debug_assert_ne!(value, KeyIndex::EMPTY);
+    /// The slot of `key`, its block made when there is none yet.
+    fn slot_mut(&mut self, key: Key) -> &mut u32 {
         let (block, n) = KeyIndex::slot(key);
         let slots = &mut self.slots;
         let b = *self.blocks.entry(block).or_insert_with(|| {
             slots.push([KeyIndex::EMPTY; 16]);
             (slots.len() - 1) as u32
         });
-        let v = &mut self.slots[b as usize][n];
-        if *v == KeyIndex::EMPTY {
+        &mut self.slots[b as usize][n]
+    }
+
+    /// The value of `key`, inserting `value` first when there is none.
+    pub fn get_or_insert(&mut self, key: Key, value: u32) -> u32 {
+        debug_assert_ne!(value, KeyIndex::EMPTY);
+        let v = self.slot_mut(key);
+        let new = *v == KeyIndex::EMPTY;
+        if new {
             *v = value;
-            self.len += 1;
         }
-        *v
+        let value = *v;
+        self.len += new as usize;
+        value
     }
 
     /// Sets the value of `key`.
     pub fn insert(&mut self, key: Key, value: u32) {
         debug_assert_ne!(value, KeyIndex::EMPTY);
-        let (block, n) = KeyIndex::slot(key);
-        let slots = &mut self.slots;
-        let b = *self.blocks.entry(block).or_insert_with(|| {
-            slots.push([KeyIndex::EMPTY; 16]);
-            (slots.len() - 1) as u32
-        });
-        let v = &mut self.slots[b as usize][n];
-        self.len += (*v == KeyIndex::EMPTY) as usize;
+        let v = self.slot_mut(key);
+        let new = *v == KeyIndex::EMPTY;
         *v = value;
+        self.len += new as usize;
     }
 
     pub fn len(&self) -> usize {

@@ -293,6 +293,22 @@ impl TriMesh {
             })
             .sum()
     }
+
+    /// The triangles by the bits of their corners, each rotated to start at its least corner,
+    /// sorted: equal for two meshes that differ only in how vertices and triangles are
+    /// numbered and ordered.
+    pub fn corner_bits_sorted(&self) -> Vec<[[u64; 2]; 3]> {
+        let bits = |p: Point| [p[0].to_bits(), p[1].to_bits()];
+        let mut triangles: Vec<[[u64; 2]; 3]> = (0..self.triangles.len())
+            .map(|t| {
+                let c = self.corners(t).map(bits);
+                let r = (0..3).min_by_key(|&r| c[r]).unwrap_or(0);
+                [c[r], c[(r + 1) % 3], c[(r + 2) % 3]]
+            })
+            .collect();
+        triangles.sort_unstable();
+        triangles
+    }
 }
 
 #[cfg(test)]

@@ -7,23 +7,16 @@ use hexmesh::hex::extended::{mesh_extended, ExtendedRun};
 use hexmesh::hex::fuzz::generate_case;
 use hexmesh::{Params, Pslg, TriMesh};
 
-/// The mesh as a sorted list of triangles (corner bits, rotated to start at the least) and a
-/// sorted list of vertices: equal for two meshes that differ only in numbering and order.
+/// The mesh as its sorted triangles (`TriMesh::corner_bits_sorted`) and its sorted vertex
+/// bits: equal for two meshes that differ only in numbering and order.
 fn canonical(m: &TriMesh) -> (Vec<[[u64; 2]; 3]>, Vec<[u64; 2]>) {
-    let bits = |p: [f64; 2]| [p[0].to_bits(), p[1].to_bits()];
-    let mut triangles: Vec<[[u64; 2]; 3]> = m
-        .triangles
+    let mut vertices: Vec<[u64; 2]> = m
+        .vertices
         .iter()
-        .map(|t| {
-            let c = t.map(|v| bits(m.vertices[v as usize]));
-            let r = (0..3).min_by_key(|&r| c[r]).expect("three corners");
-            [c[r], c[(r + 1) % 3], c[(r + 2) % 3]]
-        })
+        .map(|p| [p[0].to_bits(), p[1].to_bits()])
         .collect();
-    triangles.sort_unstable();
-    let mut vertices: Vec<[u64; 2]> = m.vertices.iter().map(|&p| bits(p)).collect();
     vertices.sort_unstable();
-    (triangles, vertices)
+    (m.corner_bits_sorted(), vertices)
 }
 
 /// Meshes `input` and, when the run spliced its dual, compares it with the dual extracted

@@ -326,7 +326,8 @@ fn spliced(
 /// checks it where it matters: the replaced and the new triangles must meet the kept ones
 /// along the same seam (their boundary edges between vertices outside `inner`, as directed
 /// edges between vertex keys), and every vertex outside `inner` that a new triangle uses must
-/// be a vertex of a replaced one, in the same place. `None` when not.
+/// be a vertex of a replaced one, in the same place; the new triangles' other boundary edges
+/// must lie on the rim of the bounding hexagon (no hole). `None` when not.
 /// Kept triangles and vertices keep their order (the input points stay the first vertices);
 /// the new ones follow in the order of `part`.
 pub(crate) fn splice(
@@ -382,6 +383,18 @@ pub(crate) fn splice(
         b
     };
     if boundary(&replaced) != boundary(&new_edges) {
+        return None;
+    }
+    // The other boundary edges of the new triangles (at an inside vertex) must lie on the
+    // boundary of the whole dual: both ends at hexagons on the rim of the bounding hexagon.
+    // Anywhere else such an edge would border a hole, a triangle the region missed.
+    let rim = |k: &Key| {
+        let leaf = leaf_of_vertex(h, *k);
+        leaf.on_boundary() || (0..6).any(|d| !leaf.neighbor(d).inside())
+    };
+    if new_edges.iter().any(|&(a, b)| {
+        !new_edges.contains(&(b, a)) && (inside(&a) || inside(&b)) && !(rim(&a) && rim(&b))
+    }) {
         return None;
     }
     let same =
@@ -1663,4 +1676,76 @@ pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The finished `hex` dual of plane-100 with its vertex keys, the hierarchy, and an
+    /// interior vertex far from the bounding hexagon with its region (reach 2).
+    fn plane_100() -> (ExtendedRun, TriMesh, Vec<Key>, usize, Region) {
+        let input = crate::datasets::by_name("plane-100").expect("a dataset");
+        let run = mesh_extended(&input, &Params::default()).expect("meshes");
+        let h = &run.hierarchy;
+        let r = rings_with_flips(h, &run.rings);
+        let (mut moved, patch) = relocations(h, &r);
+        apply_placed(&mut moved, &run.rings);
+        let (mesh, keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+        let centre = [0.5, 0.5];
+        let v = (0..mesh.vertices.len())
+            .min_by(|&a, &b| {
+                crate::geom::dist2(mesh.vertices[a], centre)
+                    .total_cmp(&crate::geom::dist2(mesh.vertices[b], centre))
+            })
+            .expect("vertices");
+        let inner = Region::around(&[leaf_of_vertex(h, keys[v])], 2);
+        (run, mesh, keys, v, inner)
+    }
+
+    #[test]
+    fn a_dual_spliced_with_itself_is_itself() {
+        let (run, mesh, keys, _, inner) = plane_100();
+        let whole = splice(
+            &run.hierarchy,
+            (mesh.clone(), keys.clone()),
+            &mesh,
+            &keys,
+            &inner,
+        )
+        .expect("the seam closes");
+        assert_eq!(whole.corner_bits_sorted(), mesh.corner_bits_sorted());
+        assert_eq!(whole.vertices.len(), mesh.vertices.len());
+    }
+
+    #[test]
+    fn a_region_missing_a_triangle_is_not_spliced() {
+        let (run, mesh, keys, v, inner) = plane_100();
+        let mut part = mesh.clone();
+        let t = part
+            .triangles
+            .iter()
+            .position(|t| t.contains(&(v as u32)))
+            .expect("a triangle at the vertex");
+        part.triangles.remove(t);
+        assert!(splice(&run.hierarchy, (mesh, keys.clone()), &part, &keys, &inner).is_none());
+    }
+
+    #[test]
+    fn a_region_that_moves_a_seam_vertex_is_not_spliced() {
+        let (run, mesh, keys, _, inner) = plane_100();
+        let h = &run.hierarchy;
+        let inside = |w: u32| inner.contains(leaf_of_vertex(h, keys[w as usize]));
+        // A vertex outside the region on a triangle that has one inside: on the seam.
+        let seam = mesh
+            .triangles
+            .iter()
+            .filter(|t| t.iter().any(|&w| inside(w)))
+            .flat_map(|t| t.iter().copied())
+            .find(|&w| !inside(w))
+            .expect("a seam vertex");
+        let mut part = mesh.clone();
+        part.vertices[seam as usize][0] += 1e-9;
+        assert!(splice(h, (mesh, keys.clone()), &part, &keys, &inner).is_none());
+    }
 }

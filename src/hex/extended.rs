@@ -653,10 +653,10 @@ pub(crate) fn extend_and_verify(
                         &patch,
                         &region,
                     );
-                    // Only vertices whose every triangle is in this part of the dual may be
-                    // placed by `settle_contested`.
                     // The vertices `splice` takes from this part of the dual.
                     let inner = wide.within(REACH - 1);
+                    // Only vertices whose every triangle is in this part of the dual may be
+                    // placed by `settle_contested`.
                     (mesh, keys, patch, Some(wide.within(REACH - 3)), Some(inner))
                 }
             };

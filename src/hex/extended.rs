@@ -299,23 +299,49 @@ pub(crate) fn final_dual(h: &Hierarchy, state: &RingState) -> TriMesh {
     dual::extract_patched(h, Placement::Relocated, &moved, &patch).0
 }
 
-/// `splice` once local checks after a complete one have passed, from the complete dual kept
-/// then (`base`) and the region the last local check extracted; `None` when there is no
-/// complete dual to splice into, or the seam does not close (the caller extracts it whole).
-fn spliced(
+/// The whole dual once a check has passed. After a complete check (no `inner` region) it is
+/// the checked `mesh`; after local checks, `splice` of the complete dual kept then (`base`)
+/// and the region's `mesh`, whose `keys` get back the ones `blamed` replaced. `None` when
+/// there is no complete dual to splice into (incremental insertion) or the seam does not
+/// close: the caller extracts it whole.
+fn whole_dual(
     h: &Hierarchy,
     stats: &mut ExtendedStats,
     base: Option<(TriMesh, Vec<Key>)>,
-    part: &TriMesh,
-    part_keys: &[Key],
+    mesh: TriMesh,
+    keys: &mut [Key],
+    blamed: &[(usize, Key)],
     inner: Option<&Region>,
 ) -> Option<TriMesh> {
-    let whole = splice(h, base?, part, part_keys, inner?);
+    let Some(inner) = inner else {
+        return Some(mesh);
+    };
+    unblame(keys, blamed);
+    let whole = splice(h, base?, &mesh, keys, inner);
     match whole {
         Some(_) => stats.spliced += 1,
         None => stats.splice_refused += 1,
     }
     whole
+}
+
+/// Gives the vertex keys back that blaming triangles on MOVED_CENTER_3 hexagons replaced.
+fn unblame(keys: &mut [Key], blamed: &[(usize, Key)]) {
+    for &(v, k) in blamed {
+        keys[v] = k;
+    }
+}
+
+/// After a complete check that failed, when local repairs begin: the complete dual and its
+/// vertex keys (unblamed) become the `base` that `whole_dual` splices into.
+fn keep_for_splice(
+    base: &mut Option<(TriMesh, Vec<Key>)>,
+    mesh: &mut TriMesh,
+    keys: &mut Vec<Key>,
+    blamed: &[(usize, Key)],
+) {
+    unblame(keys, blamed);
+    *base = Some((std::mem::take(mesh), std::mem::take(keys)));
 }
 
 /// The whole dual after local repairs without a second pass over the whole hierarchy: the
@@ -684,22 +710,21 @@ pub(crate) fn extend_and_verify(
                     *k = owner;
                 }
             }
-            let unblame = |keys: &mut Vec<Key>| {
-                for &(v, k) in &blamed {
-                    keys[v] = k;
-                }
-            };
             let bad = offending_leaves(h, &mesh, &keys);
             stats.mc3_rejected += bad
                 .iter()
                 .filter(|b| b.vertices.iter().any(|v| patch.chain_cells.contains(v)))
                 .count() as u64;
             if bad.is_empty() {
-                if full {
-                    return Ok(Some(mesh));
-                }
-                unblame(&mut keys);
-                return Ok(spliced(h, stats, base.take(), &mesh, &keys, inner.as_ref()));
+                return Ok(whole_dual(
+                    h,
+                    stats,
+                    base.take(),
+                    mesh,
+                    &mut keys,
+                    &blamed,
+                    inner.as_ref(),
+                ));
             }
             // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
             // contested cells of the offending triangles take the moved role instead.
@@ -735,8 +760,7 @@ pub(crate) fn extend_and_verify(
                     stats.corner_switches += 1;
                 }
                 if full {
-                    unblame(&mut keys);
-                    base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
+                    keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
                 }
                 continue;
             }
@@ -751,8 +775,7 @@ pub(crate) fn extend_and_verify(
                 let moved = polish_rings(h, &r, &mut mesh, &keys, &tris, l_min, &movable);
                 if moved == 0 {
                     if full {
-                        unblame(&mut keys);
-                        base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
+                        keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
                     }
                     break bad;
                 }
@@ -764,15 +787,18 @@ pub(crate) fn extend_and_verify(
                 }
                 let again = offending_leaves(h, &mesh, &keys);
                 if again.is_empty() {
-                    if full {
-                        return Ok(Some(mesh));
-                    }
-                    unblame(&mut keys);
-                    return Ok(spliced(h, stats, base.take(), &mesh, &keys, inner.as_ref()));
+                    return Ok(whole_dual(
+                        h,
+                        stats,
+                        base.take(),
+                        mesh,
+                        &mut keys,
+                        &blamed,
+                        inner.as_ref(),
+                    ));
                 }
                 if full {
-                    unblame(&mut keys);
-                    base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
+                    keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
                 }
                 break again;
             }
@@ -791,8 +817,7 @@ pub(crate) fn extend_and_verify(
                 stats.ring_flips += 1;
             }
             if full {
-                unblame(&mut keys);
-                base = Some((std::mem::take(&mut mesh), std::mem::take(&mut keys)));
+                keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
             }
         };
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();

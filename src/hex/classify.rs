@@ -83,16 +83,12 @@ impl FinStrip {
 /// hexagon inside), so one lookup per direction decides it.
 pub fn fin_mask(h: &Hierarchy, key: Key) -> u8 {
     debug_assert!(h.is_full_leaf(key), "fin_mask of {key:?}, not a full leaf");
-    subdivided_neighbours(h, key)
-}
-
-/// The directions in which the neighbour of `key` lies inside the bounding hexagon and is
-/// subdivided, as a bit mask: the fins of `key` when it is a full leaf.
-pub fn subdivided_neighbours(h: &Hierarchy, key: Key) -> u8 {
     subdivided_and_neighbours(h, key).1
 }
 
-/// Whether `key` is subdivided, and `subdivided_neighbours(key)`, from the same lookups.
+/// Whether `key` is subdivided, and the directions in which its neighbour lies inside the
+/// bounding hexagon and is subdivided, as a bit mask (the fins of `key` when it is a full
+/// leaf), from the same lookups.
 pub fn subdivided_and_neighbours(h: &Hierarchy, key: Key) -> (bool, u8) {
     let (own, mut mask) = h.subdivided_neighbourhood(key);
     let mut rest = mask;
@@ -293,12 +289,6 @@ impl Rings {
             .copied()
             .filter(|k| !self.occupied.contains_key(k) && h.is_occupied(*k))
             .collect();
-        self.apply_changes(h, removed, added);
-    }
-
-    /// `update_changed` once the hexagons that stopped (`removed`) and started (`added`)
-    /// being occupied are known, each list sorted.
-    fn apply_changes(&mut self, h: &Hierarchy, removed: Vec<Key>, added: Vec<Key>) {
         if removed.is_empty() && added.is_empty() {
             return;
         }

@@ -338,12 +338,7 @@ impl KeySet {
     }
 
     /// The neighbours of `key` (same level, directions `DIRS`) that are in the set, as a bit
-    /// mask (bit d: direction d).
-    pub fn neighbour_mask(&self, key: Key) -> u8 {
-        self.neighbourhood(key) & 0x3f
-    }
-
-    /// `neighbour_mask` with bit 6 set when `key` itself is in the set. The seven cells lie
+    /// mask (bit d: direction d), with bit 6 set when `key` itself is. The seven cells lie
     /// in a 3 × 3 window of one level, which meets one block for 36 of the 64 positions in a
     /// block and at most four otherwise: one table lookup per block met, where `contains` on
     /// each cell makes seven.
@@ -619,7 +614,6 @@ mod tests {
                 let want = (0..6).fold(0u8, |m, d| {
                     m | ((set.contains(&key.neighbor(d)) as u8) << d)
                 });
-                assert_eq!(set.neighbour_mask(key), want, "{key:?}");
                 let own = (set.contains(&key) as u8) << 6;
                 assert_eq!(set.neighbourhood(key), want | own, "{key:?}");
             }

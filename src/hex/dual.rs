@@ -282,6 +282,7 @@ fn expand(h: &Hierarchy, mut stack: Vec<StateTri>, want: usize) -> Vec<Item> {
         items = next;
     }
 }
+
 /// The cell at the midpoint of two adjacent cells of the same level.
 fn midpoint(a: Key, b: Key) -> Key {
     Key::new(a.k + 1, a.i + b.i, a.j + b.j)

@@ -256,8 +256,9 @@ pub fn render(
         "Each curve is the fraction of all triangle angles in each 1° bin for one mesher, on a \
          log axis so that both spikes and spread stay visible (empty bins lie on the bottom \
          edge); a bin is drawn at its centre moved into the range of angles measured, so that \
-         each curve starts at the smallest angle of the mesh and ends at the largest. The dashed vertical lines in the mesher's colour are the absolute angle bounds \
-         it promises. A curve that starts left of its lower line or ends right of its upper \
+         each curve starts at the smallest angle of the mesh and ends at the largest. The \
+         dashed vertical lines in the mesher's colour are the absolute angle bounds it \
+         promises. A curve that starts left of its lower line or ends right of its upper \
          line breaks a bound. `saalfeld` and `cgal-conforming` promise no angle and `lsb` only \
          one relative to its initial triangulation, so they have no lines; their smallest \
          angles come from the input's Delaunay triangulation. Under each plot, the range and the three fullest bins of each \

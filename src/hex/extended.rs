@@ -500,19 +500,61 @@ fn rings_with_flips(h: &Hierarchy, state: &RingState) -> Rings {
 
 /// `rings_with_flips` from the rings `r` of `h` (a copy of the up-to-date `RingCache`).
 fn with_flips(h: &Hierarchy, mut r: Rings, state: &RingState) -> Rings {
+    apply_flips(h, &mut r, state, &mut Undo::default());
+    r
+}
+
+/// Gives the rings `r` the decisions of `state` in place, logging in `undo` what they
+/// replace.
+fn apply_flips(h: &Hierarchy, r: &mut Rings, state: &RingState, undo: &mut Undo) {
     let mut owners: Vec<Key> = state.second_corner.iter().copied().collect();
     owners.sort_unstable();
     for owner in owners {
-        switch_corner(h, &mut r, owner);
+        switch_corner(h, r, owner, undo);
     }
     let mut keys: Vec<Key> = state.flipped.iter().copied().collect();
     keys.sort_unstable();
     for key in keys {
-        if let Some(&alt) = r.contested.get(&key) {
-            r.roles.insert(key, alt);
+        flip(r, key, undo);
+    }
+}
+
+/// The roles the decisions of `RingState` replaced in a set of rings, oldest first (`true`
+/// for `Rings::contested`, `false` for `Rings::roles`): undone in reverse, they give the
+/// rings back as `RingCache` keeps them, without copying the tables each round.
+#[derive(Default)]
+struct Undo(Vec<(bool, Key, Option<Role>)>);
+
+impl Undo {
+    fn set(&mut self, r: &mut Rings, contested: bool, key: Key, role: Role) {
+        let map = if contested {
+            &mut r.contested
+        } else {
+            &mut r.roles
+        };
+        self.0.push((contested, key, map.insert(key, role)));
+    }
+
+    fn restore(self, r: &mut Rings) {
+        for (contested, key, old) in self.0.into_iter().rev() {
+            let map = if contested {
+                &mut r.contested
+            } else {
+                &mut r.roles
+            };
+            match old {
+                Some(role) => map.insert(key, role),
+                None => map.remove(&key),
+            };
         }
     }
-    r
+}
+
+/// The contested cell `key` takes its moved role.
+fn flip(r: &mut Rings, key: Key, undo: &mut Undo) {
+    if let Some(&alt) = r.contested.get(&key) {
+        undo.set(r, false, key, alt);
+    }
 }
 
 /// Departure from Sec. 5.4 (a last resort before a subdivision): the moved 1-ring of the
@@ -522,17 +564,18 @@ fn with_flips(h: &Hierarchy, mut r: Rings, state: &RingState) -> Rings {
 /// hexagons apart), the shift towards the nearest corner can pull the ring cell beside it
 /// too far from the fixed one (38.8° on fixture hex-second-corner-*), where the other
 /// corner keeps every angle; a subdivision there would go below the r_min of Sec. 6.3.
-fn switch_corner(h: &Hierarchy, r: &mut Rings, owner: Key) {
+fn switch_corner(h: &Hierarchy, r: &mut Rings, owner: Key, undo: &mut Undo) {
     let Some(&p) = h.occupants(owner).first().map(|&i| &h.points[i as usize]) else {
         return;
     };
     let shift = crate::hex::classify::ring_shift_ranked(h, owner, p, 1);
     for d in 0..6 {
         let cell = owner.neighbor(d);
-        for map in [&mut r.roles, &mut r.contested] {
-            if let Some(Role::Moved { owner: o, shift: s }) = map.get_mut(&cell) {
-                if *o == owner {
-                    *s = shift;
+        for contested in [false, true] {
+            let map = if contested { &r.contested } else { &r.roles };
+            if let Some(&Role::Moved { owner: o, .. }) = map.get(&cell) {
+                if o == owner {
+                    undo.set(r, contested, cell, Role::Moved { owner, shift });
                 }
             }
         }
@@ -565,6 +608,16 @@ impl RingCache {
             }
         }
         self.rings.get_or_insert_with(|| rings(h))
+    }
+
+    /// The up-to-date rings, taken out of the cache until `put` gives them back unchanged.
+    fn take(&mut self, h: &mut Hierarchy) -> Rings {
+        self.get(h);
+        self.rings.take().expect("`get` fills the cache")
+    }
+
+    fn put(&mut self, r: Rings) {
+        self.rings = Some(r);
     }
 }
 
@@ -607,6 +660,11 @@ pub(crate) fn extend_and_verify(
     // The last complete dual that failed the check, with its vertex keys, once local repairs
     // began: the whole dual they end with is spliced from it (`splice`).
     let mut base: Option<(TriMesh, Vec<Key>)> = None;
+    // The cells changed since the last local check, and the vertices of offending triangles
+    // left for later (see below); `changed` gathers both, for the dual the splice takes.
+    let mut fresh: Vec<Key> = changed.clone().unwrap_or_default();
+    let mut stuck: Vec<Key> = Vec::new();
+    let mut scope = Scope::Fresh;
     loop {
         stats.rounds += 1;
         loop {
@@ -647,16 +705,23 @@ pub(crate) fn extend_and_verify(
             drain(h)?;
             if let Some(c) = changed.as_mut() {
                 c.extend_from_slice(&h.log);
+                fresh.extend_from_slice(&h.log);
                 state.forget_near(h, &h.log);
             }
             candidates = around(&h.log);
         }
-        let current = cache.get(h).clone();
-        let mut r = with_flips(h, current, state);
+        // The rings with the decisions of `state`, changed in place and given back to the
+        // cache (undone) before the next subdivisions.
+        let mut r = cache.take(h);
+        let mut undo = Undo::default();
+        apply_flips(h, &mut r, state, &mut undo);
         let settle_cells = SettleCells::new(h, &r);
         let bad = loop {
             h.check_time()?;
             let full = changed.is_none();
+            // A local check covers the cells changed since the last one (`fresh`), or, for
+            // the dual the splice takes, every cell changed since the complete check.
+            let around_all = scope == Scope::All;
             let (mut mesh, mut keys, patch, movable, inner) = match &changed {
                 None => {
                     let (mut moved, patch) = relocations(h, &r);
@@ -666,9 +731,16 @@ pub(crate) fn extend_and_verify(
                     (mesh, keys, patch, None, None)
                 }
                 Some(c) => {
+                    let centre = if around_all {
+                        fresh.clear();
+                        &c[..]
+                    } else {
+                        &fresh[..]
+                    };
                     // Relocations reach a little further than the triangles checked, so that
                     // every vertex of a checked triangle has its final place.
-                    let wide = Region::around(c, REACH + 3);
+                    let wide = Region::around(centre, REACH + 3);
+                    fresh.clear();
                     let (mut moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
                     apply_placed(&mut moved, state);
                     let region = wide.within(REACH);
@@ -715,53 +787,87 @@ pub(crate) fn extend_and_verify(
                 .iter()
                 .filter(|b| b.vertices.iter().any(|v| patch.chain_cells.contains(v)))
                 .count() as u64;
-            if bad.is_empty() {
-                return Ok(whole_dual(
-                    h,
-                    stats,
-                    base.take(),
-                    mesh,
-                    &mut keys,
-                    &blamed,
-                    inner.as_ref(),
-                ));
+            if bad.is_empty() && stuck.is_empty() {
+                if full || around_all || base.is_none() {
+                    return Ok(whole_dual(
+                        h,
+                        stats,
+                        base.take(),
+                        mesh,
+                        &mut keys,
+                        &blamed,
+                        inner.as_ref(),
+                    ));
+                }
+                // Every local check passed: the dual around all the changes once more, for
+                // the splice (and checked again, since settling may move a vertex anew).
+                scope = Scope::All;
+                continue;
             }
             // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
             // contested cells of the offending triangles take the moved role instead.
+            let can_flip = |c: &Key| r.contested.contains_key(c) && !state.flipped.contains(c);
             let mut flips: Vec<Key> = bad
                 .iter()
                 .flat_map(|b| b.vertices.iter().copied())
-                .filter(|c| r.contested.contains_key(c) && !state.flipped.contains(c))
+                .filter(can_flip)
                 .collect();
             flips.sort_unstable();
             flips.dedup();
             // Next, the OCCUPIED_2 points of the offending triangles shift their moved
             // 1-ring towards their second corner (`switch_corner`).
+            let can_switch = |c: &Key| {
+                r.occupied.get(c) == Some(&Class::Occupied2) && !state.second_corner.contains(c)
+            };
             let mut switches: Vec<Key> = bad
                 .iter()
                 .flat_map(|b| b.vertices.iter().copied())
-                .filter(|c| {
-                    r.occupied.get(c) == Some(&Class::Occupied2) && !state.second_corner.contains(c)
-                })
+                .filter(can_switch)
                 .collect();
             switches.sort_unstable();
             switches.dedup();
+            // Only the offending triangles acted on are checked again at once; the others
+            // wait (`stuck`) until nothing else is left to try, so that a repair needing
+            // many rounds in one place does not re-examine every other place each round.
+            let acted = |b: &BadTriangle, on: &dyn Fn(&Key) -> bool| b.vertices.iter().any(on);
+            if !flips.is_empty() || !switches.is_empty() {
+                let on: &dyn Fn(&Key) -> bool = if flips.is_empty() {
+                    &can_switch
+                } else {
+                    &can_flip
+                };
+                for b in &bad {
+                    let to = if acted(b, on) { &mut fresh } else { &mut stuck };
+                    to.extend_from_slice(&b.vertices);
+                }
+            }
             if flips.is_empty() && !switches.is_empty() {
-                changed
-                    .get_or_insert_with(Vec::new)
-                    .extend(bad.iter().flat_map(|b| b.vertices.iter().copied()));
                 for owner in switches {
-                    switch_corner(h, &mut r, owner);
+                    switch_corner(h, &mut r, owner, &mut undo);
                     state.second_corner.insert(owner);
                     state.forget_near(h, &[owner]);
-                    let c = changed.get_or_insert_with(Vec::new);
-                    c.push(owner);
-                    c.extend((0..6).map(|d| owner.neighbor(d)));
+                    fresh.push(owner);
+                    fresh.extend((0..6).map(|d| owner.neighbor(d)));
                     stats.corner_switches += 1;
                 }
+                changed
+                    .get_or_insert_with(Vec::new)
+                    .extend(fresh.iter().chain(&stuck));
                 if full {
                     keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
                 }
+                scope = Scope::Fresh;
+                continue;
+            }
+            if flips.is_empty() && !stuck.is_empty() {
+                // Nothing to try here, but the waiting triangles may still have a flip or a
+                // switch: check them (and these) again together.
+                fresh.append(&mut stuck);
+                fresh.extend(bad.iter().flat_map(|b| b.vertices.iter().copied()));
+                changed
+                    .get_or_insert_with(Vec::new)
+                    .extend_from_slice(&fresh);
+                scope = Scope::Fresh;
                 continue;
             }
             if flips.is_empty() {
@@ -787,39 +893,43 @@ pub(crate) fn extend_and_verify(
                 }
                 let again = offending_leaves(h, &mesh, &keys);
                 if again.is_empty() {
-                    return Ok(whole_dual(
-                        h,
-                        stats,
-                        base.take(),
-                        mesh,
-                        &mut keys,
-                        &blamed,
-                        inner.as_ref(),
-                    ));
+                    if full || around_all || base.is_none() {
+                        return Ok(whole_dual(
+                            h,
+                            stats,
+                            base.take(),
+                            mesh,
+                            &mut keys,
+                            &blamed,
+                            inner.as_ref(),
+                        ));
+                    }
+                    scope = Scope::All;
+                    continue;
                 }
                 if full {
                     keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
                 }
                 break again;
             }
-            // The next check covers the flipped cells and every offending triangle, flipped
-            // or not, so that none is forgotten.
-            changed
-                .get_or_insert_with(Vec::new)
-                .extend(bad.iter().flat_map(|b| b.vertices.iter().copied()));
+            // The flipped cells are checked again, with the offending triangles they touch.
             for c in flips {
-                if let Some(&alt) = r.contested.get(&c) {
-                    r.roles.insert(c, alt);
-                }
+                flip(&mut r, c, &mut undo);
                 state.flipped.insert(c);
                 state.placed.remove(&c.canonical());
-                changed.get_or_insert_with(Vec::new).push(c);
+                fresh.push(c);
                 stats.ring_flips += 1;
             }
+            changed
+                .get_or_insert_with(Vec::new)
+                .extend(fresh.iter().chain(&stuck));
             if full {
                 keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
             }
+            scope = Scope::Fresh;
         };
+        undo.restore(&mut r);
+        cache.put(r);
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();
         bad.sort();
         bad.dedup();
@@ -848,8 +958,19 @@ pub(crate) fn extend_and_verify(
         changed
             .get_or_insert_with(Vec::new)
             .extend_from_slice(&h.log);
+        fresh.extend_from_slice(&h.log);
+        scope = Scope::Fresh;
         candidates = around(&h.log);
     }
+}
+
+/// What a local check of `extend_and_verify` covers.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Scope {
+    /// The cells changed since the last check.
+    Fresh,
+    /// Every cell changed since the complete check: the part of the dual `splice` takes.
+    All,
 }
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want

@@ -306,6 +306,10 @@ struct Builder<'a> {
     vertices: Vec<Point>,
     triangles: Vec<[u32; 3]>,
     used: Vec<bool>,
+    /// For a part of the relocated dual: the input point of each vertex (`u32::MAX`: none).
+    /// The index then holds the input points only once met, instead of all of them from the
+    /// start (a pass over every point for a few triangles), and `finish` numbers them first.
+    points_met: Option<Vec<u32>>,
 }
 
 impl<'a> Builder<'a> {
@@ -322,7 +326,8 @@ impl<'a> Builder<'a> {
         let expected = if whole { h.full_leaves } else { 0 } + h.points.len();
         let mut index = KeyIndex::with_capacity(expected);
         let mut vertices = Vec::with_capacity(expected);
-        if placement == Placement::Relocated {
+        let lazy = placement == Placement::Relocated && !whole;
+        if placement == Placement::Relocated && whole {
             vertices = h.points.clone();
             // In any order: the index is the same.
             for key in h.occupied_unordered() {
@@ -342,7 +347,9 @@ impl<'a> Builder<'a> {
         // a triangle of a dropped star (`emit`); the patch gives them vertices (`vertex`).
         let mut marked = true;
         for &key in dropped {
-            if index.get_or_insert(key, DROPPED) != DROPPED {
+            if lazy && point_at(h, key).is_some() {
+                marked = false;
+            } else if index.get_or_insert(key, DROPPED) != DROPPED {
                 // A dropped centre that already is a vertex (an input point): test the set.
                 marked = false;
             }
@@ -357,6 +364,7 @@ impl<'a> Builder<'a> {
             vertices,
             triangles: Vec::with_capacity(if whole { 2 * expected } else { 0 }),
             used,
+            points_met: lazy.then(Vec::new),
         }
     }
 
@@ -427,6 +435,13 @@ impl<'a> Builder<'a> {
 
     /// A new vertex for the canonical key `key` (not in the index, or a dropped centre).
     fn new_vertex(&mut self, key: Key) -> u32 {
+        if let Some(met) = &mut self.points_met {
+            if let Some(i) = point_at(self.h, key) {
+                met.push(i);
+                return self.push_vertex(key, self.h.points[i as usize]);
+            }
+            met.push(u32::MAX);
+        }
         let p = self.place(key);
         self.push_vertex(key, p)
     }
@@ -473,6 +488,26 @@ impl<'a> Builder<'a> {
     /// Drops vertices no triangle uses (points of an unfinished refinement, all of them in
     /// `Plain` placement) and renumbers.
     fn finish(self) -> (TriMesh, Vec<Key>) {
+        if let Some(met) = &self.points_met {
+            // Every vertex is used; the input points go first, in their order, as in a
+            // builder that started with all of them.
+            let mut order: Vec<u32> = (0..self.vertices.len() as u32).collect();
+            order.sort_by_key(|&v| (met[v as usize] == u32::MAX, met[v as usize]));
+            let mut map = vec![0u32; order.len()];
+            for (new, &old) in order.iter().enumerate() {
+                map[old as usize] = new as u32;
+            }
+            let mesh = TriMesh {
+                vertices: order.iter().map(|&v| self.vertices[v as usize]).collect(),
+                triangles: self
+                    .triangles
+                    .iter()
+                    .map(|t| t.map(|v| map[v as usize]))
+                    .collect(),
+            };
+            let keys = order.iter().map(|&v| self.keys[v as usize]).collect();
+            return (mesh, keys);
+        }
         if self.used.iter().all(|&u| u) {
             let mesh = TriMesh {
                 vertices: self.vertices,
@@ -502,6 +537,19 @@ impl<'a> Builder<'a> {
             },
             keys,
         )
+    }
+}
+
+/// The input point whose hexagon is the full leaf with canonical centre `key`, if it holds
+/// exactly one: that vertex of the relocated dual is the point itself.
+fn point_at(h: &Hierarchy, key: Key) -> Option<u32> {
+    let mut leaf = key;
+    while h.is_subdivided(leaf) {
+        leaf = leaf.central_child();
+    }
+    match h.occupants(leaf) {
+        [p] if h.is_full_leaf(leaf) => Some(*p),
+        _ => None,
     }
 }
 

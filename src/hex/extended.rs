@@ -715,7 +715,11 @@ pub(crate) fn extend_and_verify(
         let mut r = cache.take(h);
         let mut undo = Undo::default();
         apply_flips(h, &mut r, state, &mut undo);
-        let settle_cells = SettleCells::new(h, &r);
+        let settle_cells = if changed.is_none() {
+            SettleCells::listed(h, &r)
+        } else {
+            SettleCells::Lookup
+        };
         let bad = loop {
             h.check_time()?;
             let full = changed.is_none();
@@ -766,8 +770,14 @@ pub(crate) fn extend_and_verify(
                     .is_none_or(|m| m.contains(leaf_of_vertex(h, k)))
             };
             let w = &settle_cells;
-            stats.settled += settle_contested(h, &mut mesh, &keys, l_min, w, false, &movable);
-            stats.settled += settle_contested(h, &mut mesh, &keys, l_min, w, true, &movable);
+            for with_neighbours in [false, true] {
+                let pass = SettlePass {
+                    rings: &r,
+                    cells: w,
+                    with_neighbours,
+                };
+                stats.settled += settle_contested(h, &mut mesh, &keys, l_min, pass, &movable);
+            }
             for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
                 if old != new {
                     state.placed.insert(keys[v], *new);
@@ -1356,23 +1366,22 @@ fn settle_contested(
     mesh: &mut TriMesh,
     keys: &[Key],
     l_min: f64,
-    wanted: &SettleCells,
-    with_neighbours: bool,
+    pass: SettlePass<'_>,
     movable: &dyn Fn(Key) -> bool,
 ) -> u64 {
-    if wanted.contested.is_empty() && !with_neighbours {
+    let SettlePass {
+        rings: r,
+        cells: wanted,
+        with_neighbours,
+    } = pass;
+    if wanted.none_contested(r) && !with_neighbours {
         return 0;
     }
     let slack = SELF_CHECK_SLACK;
     // The vertices of contested cells, with their lattice centre and radius, sorted by key.
     let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
-    let wanted = if with_neighbours {
-        &wanted.ring
-    } else {
-        &wanted.contested
-    };
     for (v, k) in keys.iter().enumerate() {
-        if let Some(&leaf) = wanted.get(k) {
+        if let Some(leaf) = wanted.cell(h, r, *k, with_neighbours) {
             if v >= h.points.len() && movable(*k) {
                 cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
             }
@@ -1679,23 +1688,41 @@ fn polish_rings(
     moves
 }
 
+/// One pass of `settle_contested`: the rings, their `SettleCells`, and whether the ring
+/// cells next to contested ones may move too.
+#[derive(Clone, Copy)]
+struct SettlePass<'a> {
+    rings: &'a Rings,
+    cells: &'a SettleCells,
+    with_neighbours: bool,
+}
+
 /// The cells `settle_contested` may move, by the canonical key of their vertex: the
 /// contested cells; in the second pass every ring cell that is a full leaf, since when a
 /// contested cell alone cannot reach a good position its neighbour in the same ring has to
 /// give way, and a moved ring cell may come closer to an OCCUPIED_2 point than l_min. They
 /// depend only on which cells the rings hold (a flip or a corner switch changes roles, not
-/// cells), so they are listed once per set of rings, not once per check.
-struct SettleCells {
-    contested: FxHashMap<Key, Key>,
-    ring: FxHashMap<Key, Key>,
+/// cells): for the complete check they are listed once per set of rings (`Listed`); a local
+/// check, on a small part of the dual, looks its vertices up in the rings (`Lookup`) instead
+/// of listing all of them each round. Of two contested cells with the same centre (at two
+/// levels) the finer one is taken, either way.
+enum SettleCells {
+    Listed {
+        contested: FxHashMap<Key, Key>,
+        ring: FxHashMap<Key, Key>,
+    },
+    Lookup,
 }
 
 impl SettleCells {
-    fn new(h: &Hierarchy, r: &Rings) -> SettleCells {
+    fn listed(h: &Hierarchy, r: &Rings) -> SettleCells {
         let mut contested: FxHashMap<Key, Key> =
             FxHashMap::with_capacity_and_hasher(r.contested.len(), Default::default());
         for &c in r.contested.keys() {
-            contested.insert(c.canonical(), c);
+            let e = contested.entry(c.canonical()).or_insert(c);
+            if c.k > e.k {
+                *e = c;
+            }
         }
         let mut ring = contested.clone();
         ring.reserve(r.roles.len());
@@ -1704,7 +1731,51 @@ impl SettleCells {
                 ring.insert(c.canonical(), c);
             }
         }
-        SettleCells { contested, ring }
+        SettleCells::Listed { contested, ring }
+    }
+
+    /// True when no cell is contested.
+    fn none_contested(&self, r: &Rings) -> bool {
+        match self {
+            SettleCells::Listed { contested, .. } => contested.is_empty(),
+            SettleCells::Lookup => r.contested.is_empty(),
+        }
+    }
+
+    /// The cell of the vertex with canonical key `key` that the first pass (or, with
+    /// `with_neighbours`, the second) may move.
+    fn cell(&self, h: &Hierarchy, r: &Rings, key: Key, with_neighbours: bool) -> Option<Key> {
+        match self {
+            SettleCells::Listed { contested, ring } => {
+                let map = if with_neighbours { ring } else { contested };
+                map.get(&key).copied()
+            }
+            SettleCells::Lookup => {
+                // The cells with this centre: one per level from `key` down; a ring cell
+                // lies at the level of an occupied hexagon, so no deeper than `deepest`.
+                let mut c = key;
+                let mut leaf = None;
+                let mut found = None;
+                loop {
+                    if r.contested.contains_key(&c) {
+                        found = Some(c);
+                    }
+                    if leaf.is_none() && !h.is_subdivided(c) {
+                        leaf = Some(c);
+                    }
+                    if c.k >= h.deepest() {
+                        break;
+                    }
+                    c = c.central_child();
+                }
+                match leaf {
+                    Some(l) if with_neighbours && r.roles.contains_key(&l) && h.is_full_leaf(l) => {
+                        Some(l)
+                    }
+                    _ => found,
+                }
+            }
+        }
     }
 }
 

@@ -338,6 +338,11 @@ impl Hierarchy {
         self.guaranteed_level
     }
 
+    /// The deepest level a hexagon has reached.
+    pub fn deepest(&self) -> u8 {
+        self.deepest
+    }
+
     /// True when some hexagon lies below the worst-case precision limit, so the output's
     /// angles must be measured before it is trusted.
     pub fn needs_angle_check(&self) -> bool {

@@ -71,15 +71,18 @@ pub fn extract_region(
 }
 
 /// `extract_region` of `extract_patched`: the patch triangles with a cell in the region are
-/// kept with the others.
+/// kept with the others. A centre in `placed` goes there, before `moved` is asked: a large
+/// table of places is looked up, not merged into `moved`, for a small region.
 pub fn extract_region_patched(
     h: &Hierarchy,
     placement: Placement,
-    moved: &FxHashMap<Key, Point>,
+    (placed, moved): (&FxHashMap<Key, Point>, &FxHashMap<Key, Point>),
     patch: &Patch,
     region: &Region,
 ) -> (TriMesh, Vec<Key>) {
-    extract_where(h, placement, moved, patch, false, |tri| region.touches(tri))
+    let mut b = Builder::new(h, placement, moved, &patch.dropped, false);
+    b.placed = Some(placed);
+    emit_where(h, b, patch, |tri| region.touches(tri))
 }
 
 /// The dual recursion, descending only into lattice triangles for which `keep` holds (it must
@@ -93,7 +96,17 @@ fn extract_where(
     whole: bool,
     keep: impl Fn(&[Key; 3]) -> bool,
 ) -> (TriMesh, Vec<Key>) {
-    let mut b = Builder::new(h, placement, moved, &patch.dropped, whole);
+    let b = Builder::new(h, placement, moved, &patch.dropped, whole);
+    emit_where(h, b, patch, keep)
+}
+
+/// The descent of `extract_where` into the builder `b`.
+fn emit_where(
+    h: &Hierarchy,
+    mut b: Builder<'_>,
+    patch: &Patch,
+    keep: impl Fn(&[Key; 3]) -> bool,
+) -> (TriMesh, Vec<Key>) {
     descend(h, root_triangles(h), &keep, &mut |tri| b.emit(tri));
     for tri in patch.triangles.iter().filter(|t| keep(t)) {
         b.emit_patch(*tri);
@@ -294,6 +307,8 @@ const DROPPED: u32 = u32::MAX - 1;
 
 struct Builder<'a> {
     h: &'a Hierarchy,
+    /// Places asked before `moved` (`extract_region_patched`).
+    placed: Option<&'a FxHashMap<Key, Point>>,
     moved: &'a FxHashMap<Key, Point>,
     /// Centres whose triangles the patch replaces.
     dropped: &'a FxHashSet<Key>,
@@ -356,6 +371,7 @@ impl<'a> Builder<'a> {
         }
         Builder {
             h,
+            placed: None,
             moved,
             dropped,
             marked,
@@ -383,6 +399,9 @@ impl<'a> Builder<'a> {
 
     /// Where the centre with canonical key `key` goes.
     fn place(&self, key: Key) -> Point {
+        if let Some(&p) = self.placed.and_then(|m| m.get(&key)) {
+            return p;
+        }
         match self.moved.get(&key) {
             Some(&p) => p,
             None => self.h.lattice.center(key),

@@ -745,13 +745,12 @@ pub(crate) fn extend_and_verify(
                     // every vertex of a checked triangle has its final place.
                     let wide = Region::around(centre, REACH + 3);
                     fresh.clear();
-                    let (mut moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
-                    apply_placed(&mut moved, state);
+                    let (moved, patch) = relocations_of(h, &r, full_leaves_in(h, &wide));
                     let region = wide.within(REACH);
                     let (mesh, keys) = dual::extract_region_patched(
                         h,
                         Placement::Relocated,
-                        &moved,
+                        (&state.placed, &moved),
                         &patch,
                         &region,
                     );

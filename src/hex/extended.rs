@@ -635,11 +635,14 @@ fn same_rings(a: &Rings, b: &Rings) -> bool {
 /// The extended rules on `candidates` to a fixed point, then the self-check of the dual,
 /// repeated until the dual meets every bound. With `changed == None` the first check covers
 /// the whole dual and, when it passes, that dual is returned; otherwise (and after any
-/// repair) only the triangles near the cells changed since the last complete check are
-/// checked (`region`). When they pass, the whole dual is spliced from the last complete one
-/// and the region's (`splice`); `None` says that the whole dual passes but is still to be
-/// extracted (`final_dual`): there was no complete check (incremental insertion), or the
-/// splice was refused. `state` keeps the ring decisions of the self-check.
+/// repair) each check covers only the triangles near the cells changed since the previous
+/// check (`region`), so that the work of a repair is proportional to what it changes, not
+/// to how many other places are still being repaired. When every check has passed, one
+/// more covers the triangles near every cell changed since the complete check, and the
+/// whole dual is spliced from the complete one and that region's (`splice`); `None` says
+/// that the whole dual passes but is still to be extracted (`final_dual`): there was no
+/// complete check (incremental insertion), or the splice was refused. `state` keeps the
+/// ring decisions of the self-check.
 pub(crate) fn extend_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,

@@ -664,7 +664,7 @@ pub(crate) fn extend_and_verify(
     // began: the whole dual they end with is spliced from it (`splice`).
     let mut base: Option<(TriMesh, Vec<Key>)> = None;
     // The cells changed since the last local check, and the vertices of offending triangles
-    // left for later (see below); `changed` gathers both, for the dual the splice takes.
+    // left for later (see below); `changed` gathers both once, for the dual the splice takes.
     let mut fresh: Vec<Key> = changed.clone().unwrap_or_default();
     let mut stuck: Vec<Key> = Vec::new();
     let mut scope = Scope::Fresh;
@@ -738,12 +738,7 @@ pub(crate) fn extend_and_verify(
                     (mesh, keys, patch, None, None)
                 }
                 Some(c) => {
-                    let centre = if around_all {
-                        fresh.clear();
-                        &c[..]
-                    } else {
-                        &fresh[..]
-                    };
+                    let centre = if around_all { &c[..] } else { &fresh[..] };
                     // Relocations reach a little further than the triangles checked, so that
                     // every vertex of a checked triangle has its final place.
                     let wide = Region::around(centre, REACH + 3);
@@ -848,7 +843,9 @@ pub(crate) fn extend_and_verify(
                 } else {
                     &can_flip
                 };
+                let all = changed.get_or_insert_with(Vec::new);
                 for b in &bad {
+                    all.extend_from_slice(&b.vertices);
                     let to = if acted(b, on) { &mut fresh } else { &mut stuck };
                     to.extend_from_slice(&b.vertices);
                 }
@@ -858,13 +855,11 @@ pub(crate) fn extend_and_verify(
                     switch_corner(h, &mut r, owner, &mut undo);
                     state.second_corner.insert(owner);
                     state.forget_near(h, &[owner]);
-                    fresh.push(owner);
-                    fresh.extend((0..6).map(|d| owner.neighbor(d)));
+                    let ring = std::iter::once(owner).chain((0..6).map(|d| owner.neighbor(d)));
+                    fresh.extend(ring.clone());
+                    changed.get_or_insert_with(Vec::new).extend(ring);
                     stats.corner_switches += 1;
                 }
-                changed
-                    .get_or_insert_with(Vec::new)
-                    .extend(fresh.iter().chain(&stuck));
                 if full {
                     keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
                 }
@@ -875,10 +870,9 @@ pub(crate) fn extend_and_verify(
                 // Nothing to try here, but the waiting triangles may still have a flip or a
                 // switch: check them (and these) again together.
                 fresh.append(&mut stuck);
-                fresh.extend(bad.iter().flat_map(|b| b.vertices.iter().copied()));
-                changed
-                    .get_or_insert_with(Vec::new)
-                    .extend_from_slice(&fresh);
+                let vertices = bad.iter().flat_map(|b| b.vertices.iter().copied());
+                fresh.extend(vertices.clone());
+                changed.get_or_insert_with(Vec::new).extend(vertices);
                 scope = Scope::Fresh;
                 continue;
             }
@@ -930,11 +924,9 @@ pub(crate) fn extend_and_verify(
                 state.flipped.insert(c);
                 state.placed.remove(&c.canonical());
                 fresh.push(c);
+                changed.get_or_insert_with(Vec::new).push(c);
                 stats.ring_flips += 1;
             }
-            changed
-                .get_or_insert_with(Vec::new)
-                .extend(fresh.iter().chain(&stuck));
             if full {
                 keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
             }

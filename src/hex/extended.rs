@@ -239,8 +239,20 @@ impl RingState {
             return;
         }
         let near = Region::around(changed, 3);
-        self.placed
-            .retain(|k, _| !near.contains(leaf_of_vertex(h, *k)));
+        // From the region's cells when it is the smaller (a few subdivisions late in a large
+        // run), so that forgetting costs what changed, not a pass over every place.
+        let cells: Vec<Key> = near.cells().collect();
+        if cells.len() < self.placed.len() {
+            for c in cells {
+                let k = c.canonical();
+                if self.placed.contains_key(&k) && leaf_of_vertex(h, k) == c {
+                    self.placed.remove(&k);
+                }
+            }
+        } else {
+            self.placed
+                .retain(|k, _| !near.contains(leaf_of_vertex(h, *k)));
+        }
     }
 }
 

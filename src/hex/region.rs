@@ -112,6 +112,14 @@ impl Region {
         tri.iter().any(|&c| self.contains(c))
     }
 
+    /// The cells of the region, over all levels, in no particular order.
+    pub fn cells(&self) -> impl Iterator<Item = Key> + '_ {
+        self.dist
+            .iter()
+            .filter(|&(k, &d)| d <= self.reach && k.k < self.depth)
+            .map(|(k, _)| *k)
+    }
+
     /// The number of cells held, over all levels (a measure of the work done).
     pub fn len(&self) -> usize {
         self.dist.values().filter(|&&d| d <= self.reach).count()
@@ -193,6 +201,17 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_cells_of_a_view_are_the_cells_it_contains() {
+        let changed = [Key::new(4, 3, -2), Key::new(6, 1, 9)];
+        let wide = Region::around(&changed, 5);
+        let view = wide.within(2);
+        let cells: Vec<Key> = view.cells().collect();
+        assert_eq!(cells.len(), view.len());
+        assert!(cells.iter().all(|&c| view.contains(c)));
+        assert!(wide.cells().filter(|&c| !view.contains(c)).count() > 0);
     }
 
     #[test]

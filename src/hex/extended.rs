@@ -801,28 +801,11 @@ pub(crate) fn extend_and_verify(
                     *k = owner;
                 }
             }
-            let bad = offending_leaves(h, &mesh, &keys);
+            let mut bad = offending_leaves(h, &mesh, &keys);
             stats.mc3_rejected += bad
                 .iter()
                 .filter(|b| b.vertices.iter().any(|v| patch.chain_cells.contains(v)))
                 .count() as u64;
-            if bad.is_empty() && stuck.is_empty() {
-                if full || around_all || base.is_none() {
-                    return Ok(whole_dual(
-                        h,
-                        stats,
-                        base.take(),
-                        mesh,
-                        &mut keys,
-                        &blamed,
-                        inner.as_ref(),
-                    ));
-                }
-                // Every local check passed: the dual around all the changes once more, for
-                // the splice (and checked again, since settling may move a vertex anew).
-                scope = Scope::All;
-                continue;
-            }
             // Before any subdivision (which would go below the r_min of Sec. 6.3), let the
             // contested cells of the offending triangles take the moved role instead.
             let can_flip = |c: &Key| r.contested.contains_key(c) && !state.flipped.contains(c);
@@ -845,6 +828,48 @@ pub(crate) fn extend_and_verify(
                 .collect();
             switches.sort_unstable();
             switches.dedup();
+            if !bad.is_empty() && flips.is_empty() && switches.is_empty() && stuck.is_empty() {
+                // Before subdividing (which below r_min = d_min/(6√3) would break the
+                // shortest-edge bound of Sec. 6.3), polish the ring cells of the rejected
+                // triangles with a finer local search; only a mesh it repairs whole is kept.
+                let tris: Vec<usize> = bad.iter().map(|b| b.triangle).collect();
+                let trial_before = mesh.vertices.clone();
+                // Its moves never add a bad triangle or a short edge, so they are kept even
+                // when other triangles (elsewhere) still need a subdivision.
+                let moved = polish_rings(h, &r, &mut mesh, &keys, &tris, l_min, &movable);
+                if moved > 0 {
+                    stats.polished += moved;
+                    for (v, (old, new)) in trial_before.iter().zip(&mesh.vertices).enumerate() {
+                        if old != new {
+                            state.placed.insert(keys[v], *new);
+                        }
+                    }
+                    bad = offending_leaves(h, &mesh, &keys);
+                }
+                if !bad.is_empty() {
+                    if full {
+                        keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
+                    }
+                    break bad;
+                }
+            }
+            if bad.is_empty() && stuck.is_empty() {
+                if full || around_all || base.is_none() {
+                    return Ok(whole_dual(
+                        h,
+                        stats,
+                        base.take(),
+                        mesh,
+                        &mut keys,
+                        &blamed,
+                        inner.as_ref(),
+                    ));
+                }
+                // Every local check passed: the dual around all the changes once more, for
+                // the splice (and checked again, since settling may move a vertex anew).
+                scope = Scope::All;
+                continue;
+            }
             // Only the offending triangles acted on are checked again at once; the others
             // wait (`stuck`) until nothing else is left to try, so that a repair needing
             // many rounds in one place does not re-examine every other place each round.
@@ -887,48 +912,6 @@ pub(crate) fn extend_and_verify(
                 changed.get_or_insert_with(Vec::new).extend(vertices);
                 scope = Scope::Fresh;
                 continue;
-            }
-            if flips.is_empty() {
-                // Before subdividing (which below r_min = d_min/(6√3) would break the
-                // shortest-edge bound of Sec. 6.3), polish the ring cells of the rejected
-                // triangles with a finer local search; only a mesh it repairs whole is kept.
-                let tris: Vec<usize> = bad.iter().map(|b| b.triangle).collect();
-                let trial_before = mesh.vertices.clone();
-                // Its moves never add a bad triangle or a short edge, so they are kept even
-                // when other triangles (elsewhere) still need a subdivision.
-                let moved = polish_rings(h, &r, &mut mesh, &keys, &tris, l_min, &movable);
-                if moved == 0 {
-                    if full {
-                        keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
-                    }
-                    break bad;
-                }
-                stats.polished += moved;
-                for (v, (old, new)) in trial_before.iter().zip(&mesh.vertices).enumerate() {
-                    if old != new {
-                        state.placed.insert(keys[v], *new);
-                    }
-                }
-                let again = offending_leaves(h, &mesh, &keys);
-                if again.is_empty() {
-                    if full || around_all || base.is_none() {
-                        return Ok(whole_dual(
-                            h,
-                            stats,
-                            base.take(),
-                            mesh,
-                            &mut keys,
-                            &blamed,
-                            inner.as_ref(),
-                        ));
-                    }
-                    scope = Scope::All;
-                    continue;
-                }
-                if full {
-                    keep_for_splice(&mut base, &mut mesh, &mut keys, &blamed);
-                }
-                break again;
             }
             // The flipped cells are checked again, with the offending triangles they touch.
             for c in flips {

@@ -562,10 +562,7 @@ impl<'a> Builder<'a> {
 /// The input point whose hexagon is the full leaf with canonical centre `key`, if it holds
 /// exactly one: that vertex of the relocated dual is the point itself.
 fn point_at(h: &Hierarchy, key: Key) -> Option<u32> {
-    let mut leaf = key;
-    while h.is_subdivided(leaf) {
-        leaf = leaf.central_child();
-    }
+    let leaf = h.leaf_of_vertex(key);
     match h.occupants(leaf) {
         [p] if h.is_full_leaf(leaf) => Some(*p),
         _ => None,

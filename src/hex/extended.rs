@@ -245,13 +245,13 @@ impl RingState {
         if cells.len() < self.placed.len() {
             for c in cells {
                 let k = c.canonical();
-                if self.placed.contains_key(&k) && leaf_of_vertex(h, k) == c {
+                if self.placed.contains_key(&k) && h.leaf_of_vertex(k) == c {
                     self.placed.remove(&k);
                 }
             }
         } else {
             self.placed
-                .retain(|k, _| !near.contains(leaf_of_vertex(h, *k)));
+                .retain(|k, _| !near.contains(h.leaf_of_vertex(*k)));
         }
     }
 }
@@ -376,7 +376,7 @@ pub(crate) fn splice(
     inner: &Region,
 ) -> Option<TriMesh> {
     let (old, old_keys) = old;
-    let inside = |k: &Key| inner.contains(leaf_of_vertex(h, *k));
+    let inside = |k: &Key| inner.contains(h.leaf_of_vertex(*k));
     let old_in: Vec<bool> = old_keys.iter().map(inside).collect();
     let part_in: Vec<bool> = part_keys.iter().map(inside).collect();
     let TriMesh {
@@ -427,7 +427,7 @@ pub(crate) fn splice(
     // boundary of the whole dual: both ends at hexagons on the rim of the bounding hexagon.
     // Anywhere else such an edge would border a hole, a triangle the region missed.
     let rim = |k: &Key| {
-        let leaf = leaf_of_vertex(h, *k);
+        let leaf = h.leaf_of_vertex(*k);
         leaf.on_boundary() || (0..6).any(|d| !leaf.neighbor(d).inside())
     };
     if new_edges.iter().any(|&(a, b)| {
@@ -450,7 +450,7 @@ pub(crate) fn splice(
                 _ if !part_in[v] => return None,
                 // An input point whose hexagon was subdivided (its vertex key changed): it
                 // keeps its number, as in a whole extraction, where the points come first.
-                _ => match h.occupants(leaf_of_vertex(h, part_keys[v])) {
+                _ => match h.occupants(h.leaf_of_vertex(part_keys[v])) {
                     &[i] if (i as usize) < h.points.len()
                         && same(vertices[i as usize], p)
                         && same(h.points[i as usize], p) =>
@@ -497,6 +497,21 @@ pub(crate) fn splice(
     })
 }
 
+/// Keeps in `placed` the place of every vertex of `mesh` (with canonical keys `keys`) that
+/// moved from where it was in `before`.
+fn record_moves(
+    placed: &mut FxHashMap<Key, Point>,
+    before: &[Point],
+    mesh: &TriMesh,
+    keys: &[Key],
+) {
+    for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
+        if old != new {
+            placed.insert(keys[v], *new);
+        }
+    }
+}
+
 fn apply_placed(moved: &mut FxHashMap<Key, Point>, state: &RingState) {
     let mut placed: Vec<(Key, Point)> = state.placed.iter().map(|(k, p)| (*k, *p)).collect();
     placed.sort_by_key(|e| e.0);
@@ -507,11 +522,7 @@ fn apply_placed(moved: &mut FxHashMap<Key, Point>, state: &RingState) {
 /// `second_corner` shifted towards their second corner, then the contested cells in
 /// `flipped` given their moved role.
 fn rings_with_flips(h: &Hierarchy, state: &RingState) -> Rings {
-    with_flips(h, rings(h), state)
-}
-
-/// `rings_with_flips` from the rings `r` of `h` (a copy of the up-to-date `RingCache`).
-fn with_flips(h: &Hierarchy, mut r: Rings, state: &RingState) -> Rings {
+    let mut r = rings(h);
     apply_flips(h, &mut r, state, &mut Undo::default());
     r
 }
@@ -538,22 +549,22 @@ fn apply_flips(h: &Hierarchy, r: &mut Rings, state: &RingState, undo: &mut Undo)
 struct Undo(Vec<(bool, Key, Option<Role>)>);
 
 impl Undo {
-    fn set(&mut self, r: &mut Rings, contested: bool, key: Key, role: Role) {
-        let map = if contested {
+    fn table(r: &mut Rings, contested: bool) -> &mut FxHashMap<Key, Role> {
+        if contested {
             &mut r.contested
         } else {
             &mut r.roles
-        };
-        self.0.push((contested, key, map.insert(key, role)));
+        }
+    }
+
+    fn set(&mut self, r: &mut Rings, contested: bool, key: Key, role: Role) {
+        let old = Undo::table(r, contested).insert(key, role);
+        self.0.push((contested, key, old));
     }
 
     fn restore(self, r: &mut Rings) {
         for (contested, key, old) in self.0.into_iter().rev() {
-            let map = if contested {
-                &mut r.contested
-            } else {
-                &mut r.roles
-            };
+            let map = Undo::table(r, contested);
             match old {
                 Some(role) => map.insert(key, role),
                 None => map.remove(&key),
@@ -776,7 +787,7 @@ pub(crate) fn extend_and_verify(
             let movable = |k: Key| {
                 movable
                     .as_ref()
-                    .is_none_or(|m| m.contains(leaf_of_vertex(h, k)))
+                    .is_none_or(|m| m.contains(h.leaf_of_vertex(k)))
             };
             let w = &settle_cells;
             for with_neighbours in [false, true] {
@@ -787,11 +798,7 @@ pub(crate) fn extend_and_verify(
                 };
                 stats.settled += settle_contested(h, &mut mesh, &keys, l_min, pass, &movable);
             }
-            for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
-                if old != new {
-                    state.placed.insert(keys[v], *new);
-                }
-            }
+            record_moves(&mut state.placed, &before, &mesh, &keys);
             // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin
             // (`blamed` keeps the vertex keys this replaces, for `splice`).
             let mut blamed = Vec::new();
@@ -839,11 +846,7 @@ pub(crate) fn extend_and_verify(
                 let moved = polish_rings(h, &r, &mut mesh, &keys, &tris, l_min, &movable);
                 if moved > 0 {
                     stats.polished += moved;
-                    for (v, (old, new)) in trial_before.iter().zip(&mesh.vertices).enumerate() {
-                        if old != new {
-                            state.placed.insert(keys[v], *new);
-                        }
-                    }
+                    record_moves(&mut state.placed, &trial_before, &mesh, &keys);
                     bad = offending_leaves(h, &mesh, &keys);
                 }
                 if !bad.is_empty() {
@@ -1363,7 +1366,7 @@ fn settle_contested(
         cells: wanted,
         with_neighbours,
     } = pass;
-    if wanted.none_contested(r) && !with_neighbours {
+    if r.contested.is_empty() && !with_neighbours {
         return 0;
     }
     let slack = SELF_CHECK_SLACK;
@@ -1723,14 +1726,6 @@ impl SettleCells {
         SettleCells::Listed { contested, ring }
     }
 
-    /// True when no cell is contested.
-    fn none_contested(&self, r: &Rings) -> bool {
-        match self {
-            SettleCells::Listed { contested, .. } => contested.is_empty(),
-            SettleCells::Lookup => r.contested.is_empty(),
-        }
-    }
-
     /// The cell of the vertex with canonical key `key` that the first pass (or, with
     /// `with_neighbours`, the second) may move.
     fn cell(&self, h: &Hierarchy, r: &Rings, key: Key, with_neighbours: bool) -> Option<Key> {
@@ -1778,15 +1773,6 @@ struct Score {
     worst: Option<f64>,
 }
 
-/// The leaf of the vertex with canonical key `key`: the end of its chain of central children.
-fn leaf_of_vertex(h: &Hierarchy, key: Key) -> Key {
-    let mut k = key;
-    while h.is_subdivided(k) {
-        k = k.central_child();
-    }
-    k
-}
-
 /// A triangle of the dual that breaks the angle bounds or the exact empty-circle test.
 struct BadTriangle {
     /// Its index in the checked mesh.
@@ -1824,7 +1810,7 @@ fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTrian
     bad_tris
         .iter()
         .map(|&t| {
-            let vertices = mesh.triangles[t].map(|v| leaf_of_vertex(h, keys[v as usize]));
+            let vertices = mesh.triangles[t].map(|v| h.leaf_of_vertex(keys[v as usize]));
             let coarsest = vertices
                 .iter()
                 .copied()
@@ -1905,7 +1891,7 @@ mod tests {
                     .total_cmp(&crate::geom::dist2(mesh.vertices[b], centre))
             })
             .expect("vertices");
-        let inner = Region::around(&[leaf_of_vertex(h, keys[v])], 2);
+        let inner = Region::around(&[h.leaf_of_vertex(keys[v])], 2);
         (run, mesh, keys, v, inner)
     }
 
@@ -1941,7 +1927,7 @@ mod tests {
     fn a_region_that_moves_a_seam_vertex_is_not_spliced() {
         let (run, mesh, keys, _, inner) = plane_100();
         let h = &run.hierarchy;
-        let inside = |w: u32| inner.contains(leaf_of_vertex(h, keys[w as usize]));
+        let inside = |w: u32| inner.contains(h.leaf_of_vertex(keys[w as usize]));
         // A vertex outside the region on a triangle that has one inside: on the seam.
         let seam = mesh
             .triangles

@@ -427,6 +427,16 @@ impl Hierarchy {
         (0..6).all(|m| orient2d(c[m], c[(m + 1) % 6], p) >= 0.0)
     }
 
+    /// The leaf of the dual vertex with canonical key `key`: the end of its chain of
+    /// central children (the cells with the same centre, one per level).
+    pub fn leaf_of_vertex(&self, key: Key) -> Key {
+        let mut k = key;
+        while self.is_subdivided(k) {
+            k = k.central_child();
+        }
+        k
+    }
+
     /// The leaf holding `p`, by the descent of the module docs. Used by tests and pictures.
     pub fn leaf_of(&self, p: Point) -> Key {
         let mut key = Key::ROOT;

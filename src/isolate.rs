@@ -8,7 +8,7 @@
 //! request  = "HXMI" u32:version str:mesher params pslg
 //! params   = opt<f64>:min_angle opt<f64>:max_area opt<u64>:max_steps opt<u64>:max_vertices
 //!            opt<(u64 secs, u32 nanos)>:max_time
-//! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64)>:hexagon
+//! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64,f64,f64)>:hexagon (centre, circumradius, turn)
 //! answer   = payload u64:payload_len "HXMRESLT"
 //! payload  = 0u8 u8:complete opt<str>:stop_reason u64:steps u64:secs u32:nanos u64:peak_rss
 //!            u64:nv (f64, f64)×nv u64:nt (u32, u32, u32)×nt
@@ -26,7 +26,7 @@ use std::thread;
 use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
-use crate::geom::Hexagon;
+use crate::geom::{Hexagon, Turn};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Budget, MeshRun, Params};
 use crate::registry;
@@ -357,6 +357,8 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
         put_f64(b, h.center[0]);
         put_f64(b, h.center[1]);
         put_f64(b, h.circumradius);
+        put_f64(b, h.turn.cos);
+        put_f64(b, h.turn.sin);
     });
     b
 }
@@ -510,6 +512,10 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
         Some(Hexagon {
             center: [r.f64()?, r.f64()?],
             circumradius: r.f64()?,
+            turn: Turn {
+                cos: r.f64()?,
+                sin: r.f64()?,
+            },
         })
     } else {
         None
@@ -654,6 +660,10 @@ mod tests {
             hexagon: Some(Hexagon {
                 center: [0.5, 0.5],
                 circumradius: 2.0,
+                turn: Turn {
+                    cos: 0.6,
+                    sin: -0.8,
+                },
             }),
         };
         let mut params = Params::default().with_min_angle(30.25);

@@ -32,10 +32,18 @@ impl Pslg {
         !self.segments.is_empty()
     }
 
-    /// The bounding hexagon of a point set: given, or fitted (DESIGN.md "Datasets").
+    /// The bounding hexagon of a point set: given, or fitted (DESIGN.md "Datasets"); a fitted
+    /// hexagon of elongated points without segments is turned onto their principal axis
+    /// (`Hexagon::aligned`), a PSLG's is not (its segments, not its points, set the
+    /// directions that matter, paper 000 Sec. 7).
     pub fn bounding_hexagon(&self) -> Hexagon {
-        self.hexagon
-            .unwrap_or_else(|| Hexagon::fitted(&self.points))
+        self.hexagon.unwrap_or_else(|| {
+            if self.has_segments() {
+                Hexagon::fitted(&self.points)
+            } else {
+                Hexagon::aligned(&self.points)
+            }
+        })
     }
 
     /// The domain a reference mesher is asked to mesh (DESIGN.md "Datasets"): for a point set,
@@ -421,10 +429,7 @@ mod tests {
     fn a_point_outside_a_given_hexagon_is_refused() {
         let p = Pslg {
             points: vec![[0.0, 0.0], [5.0, 5.0]],
-            hexagon: Some(Hexagon {
-                center: [0.0, 0.0],
-                circumradius: 1.0,
-            }),
+            hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
             ..Pslg::default()
         };
         assert_eq!(

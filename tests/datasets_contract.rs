@@ -46,10 +46,7 @@ fn point_counts_match_the_names() {
 fn close_pair_sits_in_the_unit_hexagon_which_is_not_fitted() {
     let d = get("close-pair");
     assert_eq!(d.points, vec![[-0.01, 0.0], [0.01, 0.0]]);
-    let unit = Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    };
+    let unit = Hexagon::new([0.0, 0.0], 1.0);
     assert_eq!(d.hexagon, Some(unit));
     assert_eq!(d.bounding_hexagon(), unit);
     assert!(d.points.iter().all(|&p| unit.contains_strictly(p)));

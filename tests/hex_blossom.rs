@@ -18,10 +18,7 @@ use hexmesh::{Hexagon, Params};
 
 /// The lattice of the unit hexagon at the origin.
 fn unit_lattice() -> Lattice {
-    Lattice::new(Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    })
+    Lattice::new(Hexagon::new([0.0, 0.0], 1.0))
 }
 
 /// A hierarchy whose leaves are all of level `level` (no points).

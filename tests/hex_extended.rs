@@ -55,10 +55,7 @@ fn assert_extended_bounds(input: &Pslg) -> TriMesh {
 fn close_pair_meets_the_extended_bounds() {
     let input = Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let mesh = assert_extended_bounds(&input);

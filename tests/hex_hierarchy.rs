@@ -6,10 +6,7 @@ use hexmesh::hex::{mesh_with_hierarchy, Cell, Hierarchy, Lattice};
 use hexmesh::{Budget, Hexagon, Params, Pslg};
 
 fn unit() -> Hexagon {
-    Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    }
+    Hexagon::new([0.0, 0.0], 1.0)
 }
 
 fn hierarchy(points: Vec<[f64; 2]>) -> Hierarchy {

@@ -23,10 +23,7 @@ fn add(a: Key, d: usize) -> Key {
 
 /// A hierarchy whose leaves are all of level 3 (no points), the top T at the root centre.
 fn uniform() -> Hierarchy {
-    let lattice = Lattice::new(Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    });
+    let lattice = Lattice::new(Hexagon::new([0.0, 0.0], 1.0));
     let mut h = Hierarchy::new(lattice, Vec::new(), Budget::default());
     for k in 0..LEVEL {
         let span = 2i64 << k;

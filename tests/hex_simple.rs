@@ -30,10 +30,7 @@ fn assert_simple_bounds(input: &Pslg) -> hexmesh::MeshRun {
 fn close_pair_in_the_unit_hexagon_meets_the_simple_bounds() {
     let input = Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let run = assert_simple_bounds(&input);
@@ -113,10 +110,7 @@ fn segments_points_outside_the_hexagon_and_unresolvable_pairs_are_refused() {
     ));
     let outside = Pslg {
         points: vec![[0.0, 0.0], [2.0, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let err = HexSimple.mesh(&outside, &Params::default()).unwrap_err();
@@ -145,10 +139,7 @@ fn the_same_input_gives_the_same_mesh_bit_for_bit() {
 fn the_hexagon_picture_draws_cells_the_dual_and_the_points() {
     let input = Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let dir = std::env::temp_dir().join(format!("hexmesh-picture-{}", std::process::id()));
@@ -173,10 +164,7 @@ fn the_hexagon_picture_draws_cells_the_dual_and_the_points() {
 fn a_pair_below_the_worst_case_precision_level_is_meshed_after_measuring_its_angles() {
     let input = Pslg {
         points: vec![[-1e-7, 0.0], [1e-7, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let refused = hexmesh::hex::mesh_with_hierarchy(&input, &Params::default());

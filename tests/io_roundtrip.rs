@@ -109,10 +109,7 @@ fn node_write_read_is_bit_exact_for_awkward_floats() {
                 .collect(),
             markers: Some((0..n as i64).map(|k| k * 7 - 20).collect()),
             first_index,
-            hexagon: Some(Hexagon {
-                center: [0.1, -0.0],
-                circumradius: 1.0 / 3.0,
-            }),
+            hexagon: Some(Hexagon::new([0.1, -0.0], 1.0 / 3.0)),
             lines: Vec::new(),
         };
         let path = dir.join(format!("awkward{first_index}.node"));
@@ -247,10 +244,7 @@ fn write_pslg_then_read_input_gives_the_same_pslg() {
     let dir = scratch("pslg");
     let points = Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     write_pslg(&dir.join("close-pair.node"), &points).expect("node");

@@ -69,10 +69,7 @@ fn point_set_is_meshed_in_its_bounding_hexagon_as_a_conforming_delaunay_triangul
 #[test]
 fn close_pair_in_the_unit_hexagon_conforms() {
     let mut input = Pslg::from_points(vec![[-0.01, 0.0], [0.01, 0.0]]);
-    input.hexagon = Some(hexmesh::Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    });
+    input.hexagon = Some(hexmesh::Hexagon::new([0.0, 0.0], 1.0));
     let r = run(&input, false);
     assert_conforming_delaunay(&input, &r, Some(input.bounding_hexagon().area()));
 }

@@ -190,10 +190,7 @@ fn the_close_pair_and_collinear_points_mesh_at_30_degrees() {
     // DESIGN.md "close-pair": the bounding hexagon is the given unit hexagon, not fitted.
     let close_pair = Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
-        hexagon: Some(hexmesh::Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(hexmesh::Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let line = Pslg::from_points(

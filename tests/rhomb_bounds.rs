@@ -19,7 +19,7 @@ fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
     if !verdict.passed() {
         return Err(format!("quality verdict failed:\n{verdict}"));
     }
-    let hex = input.bounding_hexagon();
+    let hex = hexmesh::rhomb::root_hexagon(input);
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = mesh.corners(t);
         if tri.iter().any(|&v| v as usize >= mesh.vertices.len()) {
@@ -149,10 +149,7 @@ fn a_point_at_a_centroid_is_centred_by_the_melted_patch() {
     // corner (Sec. 5.4), the reason patches are melted.
     let input = Pslg {
         points: vec![[0.5, 3f64.sqrt() / 6.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     mesh_ok(&input);
@@ -174,10 +171,7 @@ fn segments_are_refused_with_a_clear_error() {
 fn a_point_outside_a_given_hexagon_is_refused() {
     let input = Pslg {
         points: vec![[5.0, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     assert!(Rhomb.mesh(&input, &Params::default()).is_err());
@@ -196,7 +190,7 @@ fn a_step_budget_gives_an_incomplete_but_valid_mesh() {
     // No input points are inserted, but the mesh still covers the hexagon with the bounds.
     let hex_only = Pslg {
         points: vec![],
-        hexagon: Some(input.bounding_hexagon()),
+        hexagon: Some(hexmesh::rhomb::root_hexagon(&input)),
         ..Pslg::default()
     };
     check(&hex_only, &run.mesh).unwrap();
@@ -215,7 +209,7 @@ fn output_is_deterministic() {
 /// hexagon's boundary. The mesh there needs edges about 1/20 of that gap, whose 30° and 90°
 /// angles then round by about 1e-6°. Only then may `rhomb` refuse with its rounding error.
 fn beyond_f64(input: &Pslg) -> bool {
-    let hex = input.bounding_hexagon();
+    let hex = hexmesh::rhomb::root_hexagon(input);
     let corners = hex.corners();
     let scale = corners
         .iter()
@@ -319,7 +313,7 @@ proptest! {
 #[test]
 fn max_area_bounds_every_triangle() {
     let input = datasets::by_name("plane-100").unwrap();
-    let limit = input.bounding_hexagon().area() / 20_000.0;
+    let limit = hexmesh::rhomb::root_hexagon(&input).area() / 20_000.0;
     let coarse = Rhomb.mesh(&input, &Params::default()).unwrap().mesh;
     let run = Rhomb
         .mesh(&input, &Params::default().with_max_area(limit))
@@ -363,10 +357,7 @@ fn a_point_near_the_fitted_edge_away_from_the_origin_is_meshed() {
 fn points_closer_than_the_lattice_depth_are_refused() {
     let input = Pslg {
         points: vec![[0.0, 0.0], [1e-16, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
     let err = Rhomb.mesh(&input, &Params::default()).unwrap_err();

@@ -218,10 +218,7 @@ fn generate(kind: Kind, seed: u64) -> Pslg {
 fn close_pair() -> Pslg {
     Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
-        hexagon: Some(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        }),
+        hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     }
 }

@@ -384,10 +384,7 @@ fn grid_points(rng: &mut Pcg64, n: usize) -> Vec<Point> {
 
 /// The regular hexagon of circumradius 1 at the origin.
 pub fn unit_hexagon() -> Hexagon {
-    Hexagon {
-        center: [0.0, 0.0],
-        circumradius: 1.0,
-    }
+    Hexagon::new([0.0, 0.0], 1.0)
 }
 
 /// Points exactly on hexagon centres, edge midpoints and corners of levels 1–6 of the unit

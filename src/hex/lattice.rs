@@ -9,7 +9,7 @@
 
 use std::hash::{BuildHasherDefault, Hasher};
 
-use crate::geom::{Hexagon, Point};
+use crate::geom::{turned_offset, Hexagon, Point, Turn};
 
 /// Deepest level the mesher constructs. Lattice coordinates of level k need k + 2 bits, and
 /// they must stay exact in an f64 mantissa (53 bits) when a position is computed.
@@ -157,6 +157,10 @@ pub struct Lattice {
     pub r0: f64,
     /// r_0·√3, rounded once, so that every y coordinate is one product and one sum.
     sqrt3_r0: f64,
+    /// The root's rotation (`Hexagon::turn`); with one, positions are o + the turned axes
+    /// (`Hexagon::axes`, `turned_offset`) applied to (X, Y).
+    pub turn: Turn,
+    axes: [f64; 4],
 }
 
 impl Lattice {
@@ -165,6 +169,8 @@ impl Lattice {
             origin: root.center,
             r0: root.circumradius,
             sqrt3_r0: root.circumradius * 3f64.sqrt(),
+            turn: root.turn,
+            axes: root.axes(),
         }
     }
 
@@ -172,6 +178,7 @@ impl Lattice {
         Hexagon {
             center: self.origin,
             circumradius: self.r0,
+            turn: self.turn,
         }
     }
 
@@ -192,6 +199,10 @@ impl Lattice {
             y /= 2;
         }
         let s = pow2(-(k as i32) - 1);
+        if !self.turn.is_none() {
+            let o = turned_offset(self.axes, x as f64, y as f64, s);
+            return [self.origin[0] + o[0], self.origin[1] + o[1]];
+        }
         [
             self.origin[0] + (self.r0 * x as f64) * s,
             self.origin[1] + (self.sqrt3_r0 * y as f64) * s,
@@ -221,8 +232,11 @@ impl Lattice {
     /// only: exact decisions are made on the constructed corners.
     pub fn nearest(&self, k: u8, p: Point) -> Key {
         let r = self.radius(k);
-        let qx = (p[0] - self.origin[0]) / r;
-        let qy = (p[1] - self.origin[1]) / r;
+        let q = self
+            .turn
+            .undo([p[0] - self.origin[0], p[1] - self.origin[1]]);
+        let qx = q[0] / r;
+        let qy = q[1] / r;
         let fi = qx * (2.0 / 3.0);
         let fj = qy / 3f64.sqrt() - fi / 2.0;
         let fs = -fi - fj;
@@ -669,28 +683,48 @@ mod tests {
     use super::*;
 
     fn unit() -> Lattice {
-        Lattice::new(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        })
+        Lattice::new(Hexagon::new([0.0, 0.0], 1.0))
+    }
+
+    /// A hexagon turned as `Hexagon::aligned` turns the one of points along (1, 0.37).
+    fn turned(center: Point, r: f64) -> Hexagon {
+        Hexagon {
+            turn: crate::geom::principal_turn(&[[0.0, 0.0], [1.0, 0.37], [0.4, 0.148]]),
+            ..Hexagon::new(center, r)
+        }
     }
 
     #[test]
     fn root_corners_match_hexagon_corners_bit_for_bit() {
-        let hex = Hexagon {
-            center: [0.3, -7.1],
-            circumradius: 2.7,
-        };
-        let lat = Lattice::new(hex);
-        assert_eq!(lat.corners(Key::ROOT), hex.corners());
+        for hex in [Hexagon::new([0.3, -7.1], 2.7), turned([0.3, -7.1], 2.7)] {
+            let lat = Lattice::new(hex);
+            assert_eq!(lat.corners(Key::ROOT), hex.corners());
+            assert_eq!(lat.root(), hex);
+        }
+    }
+
+    #[test]
+    fn a_turned_lattice_is_the_flat_topped_one_turned_about_the_centre() {
+        let (flat, turn) = (unit(), Lattice::new(turned([0.0, 0.0], 1.0)));
+        for key in [Key::new(0, 0, 0), Key::new(3, 2, -1), Key::new(5, -7, 9)] {
+            let want = flat.center(key);
+            let got = turn.turn.undo(turn.center(key));
+            assert!((got[0] - want[0]).abs() < 1e-15 && (got[1] - want[1]).abs() < 1e-15);
+            assert_eq!(turn.nearest(key.k, turn.center(key)), key);
+        }
     }
 
     #[test]
     fn a_shared_corner_has_the_same_bits_from_every_cell_and_level() {
-        let lat = Lattice::new(Hexagon {
-            center: [0.1, 0.2],
-            circumradius: 0.7,
-        });
+        for lat in [
+            Lattice::new(Hexagon::new([0.1, 0.2], 0.7)),
+            Lattice::new(turned([0.1, 0.2], 0.7)),
+        ] {
+            shared_corners_agree(&lat);
+        }
+    }
+
+    fn shared_corners_agree(lat: &Lattice) {
         // Corner 0 of (k, i, j) is corner 2 of its neighbour in direction 5 and corner 4 of its
         // neighbour in direction 0.
         let key = Key::new(3, 2, -1);

@@ -596,7 +596,15 @@ pub const CHECKED_LEVELS: u8 = 3;
 /// moves by at most 4·√2·E/r_k. Keeping that below 1.5e-8 rad (0.86e-6°) bounds the level.
 /// Inputs that need deeper hexagons are refused rather than meshed with wrong angles.
 pub fn level_limit(lattice: &Lattice) -> u8 {
-    let e = (lattice.origin[0].abs().max(lattice.origin[1].abs()) + 3.0 * lattice.r0)
+    // A turned lattice (`Lattice::turn`) computes o + ((A·X − B·Y)·s, (C·X + D·Y)·s): inside
+    // the root |X·s| ≤ 1.1 and |Y·s| ≤ 0.55, so |A·X·s| + |B·Y·s| ≤ r_0·(1.1·|cos θ| +
+    // 0.95·|sin θ|) ≤ 1.45·r_0; the two products and their difference round by at most twice
+    // that, the sum with o by (|o| + 1.45·r_0): (|o| + 4.4·r_0)·2^-53 in all, and 6·r_0 keeps
+    // the margin the unturned 3·r_0 has over its (|o| + 2.2·r_0). (The roundings of A, B, C,
+    // D themselves are the same for every point: an affine change of the whole lattice by a
+    // relative 2^-52, not a moved vertex.)
+    let spread = if lattice.turn.is_none() { 3.0 } else { 6.0 };
+    let e = (lattice.origin[0].abs().max(lattice.origin[1].abs()) + spread * lattice.r0)
         * (f64::EPSILON / 2.0);
     let min_radius = 4.0 * std::f64::consts::SQRT_2 * e / 1.5e-8;
     let mut k = 0u8;

@@ -438,10 +438,7 @@ fn hexagon_directive(lines: &Lines) -> Result<Option<Hexagon>> {
         if found.is_some() {
             return Err(bad("a second hexagon directive"));
         }
-        found = Some(Hexagon {
-            center: [v[0], v[1]],
-            circumradius: v[2],
-        });
+        found = Some(Hexagon::new([v[0], v[1]], v[2]));
     }
     Ok(found)
 }
@@ -705,13 +702,7 @@ mod tests {
     #[test]
     fn the_hexagon_directive_is_read_back() {
         let n = node("# hexmesh: hexagon 0.5 -1 2\n1 2 0 0\n1 0 0\n").expect("directive");
-        assert_eq!(
-            n.hexagon,
-            Some(Hexagon {
-                center: [0.5, -1.0],
-                circumradius: 2.0
-            })
-        );
+        assert_eq!(n.hexagon, Some(Hexagon::new([0.5, -1.0], 2.0)));
         assert!(node("1 2 0 0\n1 0 0\n# hexmesh: square 1\n").is_err());
     }
 }

@@ -139,8 +139,9 @@ impl Frame {
     /// decides which cell a point is sorted into; no sign of the mesh depends on it.
     pub fn locate(&self, p: Point) -> [f64; 2] {
         let [cx, cy] = self.hex.center;
-        let v = 1.0 + (p[1] - cy) / self.h;
-        let u = 1.0 + (p[0] - cx) / self.hex.circumradius - (v - 1.0) / 2.0;
+        let [dx, dy] = self.hex.turn.undo([p[0] - cx, p[1] - cy]);
+        let v = 1.0 + dy / self.h;
+        let u = 1.0 + dx / self.hex.circumradius - (v - 1.0) / 2.0;
         [u / 2.0, v / 2.0]
     }
 
@@ -151,6 +152,15 @@ impl Frame {
         let a = (2 * key.0 + key.1 - 3 * (1i64 << (KEY_BITS - 1))) as f64 / n;
         let b = (2 * key.1 - (1i64 << KEY_BITS)) as f64 / n;
         let [cx, cy] = self.hex.center;
+        let t = self.hex.turn;
+        if !t.is_none() {
+            // The turned hexagon's corners (`Hexagon::corners`) in the same roundings: R·a and
+            // h·b are the halves of its (A·X, B·Y) with X = 2a, Y = b.
+            let r = self.hex.circumradius;
+            let x = (r * t.cos) * a - (self.h * t.sin) * b;
+            let y = (r * t.sin) * a + (self.h * t.cos) * b;
+            return [cx + x, cy + y];
+        }
         let x = if a == 0.0 {
             cx
         } else {
@@ -168,17 +178,12 @@ mod tests {
     #[test]
     fn hexagon_corners_are_lattice_vertices_bit_exactly() {
         for hex in [
+            Hexagon::new([0.0, 0.0], 1.0),
+            Hexagon::new([0.3, -7.1], 0.0123),
+            Hexagon::new([-0.0, -0.0], 1e3),
             Hexagon {
-                center: [0.0, 0.0],
-                circumradius: 1.0,
-            },
-            Hexagon {
-                center: [0.3, -7.1],
-                circumradius: 0.0123,
-            },
-            Hexagon {
-                center: [-0.0, -0.0],
-                circumradius: 1e3,
+                turn: crate::geom::principal_turn(&[[0.0, 0.0], [1.0, 0.37], [0.4, 0.148]]),
+                ..Hexagon::new([0.3, -7.1], 0.0123)
             },
         ] {
             let f = Frame::new(hex);
@@ -195,13 +200,14 @@ mod tests {
 
     #[test]
     fn locate_inverts_point() {
-        let f = Frame::new(Hexagon {
-            center: [2.0, 3.0],
-            circumradius: 5.0,
-        });
-        let k = key(4, 5, 9);
-        let st = f.locate(f.point(k));
-        assert!((st[0] - 5.0 / 16.0).abs() < 1e-14 && (st[1] - 9.0 / 16.0).abs() < 1e-14);
+        let flat = Hexagon::new([2.0, 3.0], 5.0);
+        let turn = crate::geom::principal_turn(&[[0.0, 0.0], [1.0, 0.37], [0.4, 0.148]]);
+        for hex in [flat, Hexagon { turn, ..flat }] {
+            let f = Frame::new(hex);
+            let k = key(4, 5, 9);
+            let st = f.locate(f.point(k));
+            assert!((st[0] - 5.0 / 16.0).abs() < 1e-14 && (st[1] - 9.0 / 16.0).abs() < 1e-14);
+        }
     }
 
     #[test]

@@ -214,10 +214,7 @@ mod tests {
             let l = c.level + 1;
             c = Cell::new(l, index_at(0.37, l), index_at(0.55, l));
         }
-        let frame = Frame::new(Hexagon {
-            center: [0.0, 0.0],
-            circumradius: 1.0,
-        });
+        let frame = Frame::new(Hexagon::new([0.0, 0.0], 1.0));
         let mesh = triangulate(&tree, &frame, &[], &[]);
         let (mut equilateral, mut right) = (0, 0);
         for t in 0..mesh.triangles.len() {

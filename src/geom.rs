@@ -212,7 +212,7 @@ impl Hexagon {
     }
 
     /// `fitted`, turned onto the principal axis of elongated points (`principal_turn`): the
-    /// bounding hexagon of a point set.
+    /// root of the hex meshers for a point set (`hex::root_hexagon`).
     pub fn aligned(points: &[Point]) -> Hexagon {
         Hexagon::fitted_with(points, principal_turn(points))
     }

@@ -32,18 +32,11 @@ impl Pslg {
         !self.segments.is_empty()
     }
 
-    /// The bounding hexagon of a point set: given, or fitted (DESIGN.md "Datasets"); a fitted
-    /// hexagon of elongated points without segments is turned onto their principal axis
-    /// (`Hexagon::aligned`), a PSLG's is not (its segments, not its points, set the
-    /// directions that matter, paper 000 Sec. 7).
+    /// The bounding hexagon of a point set: given, or fitted (DESIGN.md "Datasets"). The hex
+    /// meshers turn a fitted one for elongated points (`hex::root_hexagon`).
     pub fn bounding_hexagon(&self) -> Hexagon {
-        self.hexagon.unwrap_or_else(|| {
-            if self.has_segments() {
-                Hexagon::fitted(&self.points)
-            } else {
-                Hexagon::aligned(&self.points)
-            }
-        })
+        self.hexagon
+            .unwrap_or_else(|| Hexagon::fitted(&self.points))
     }
 
     /// The domain a reference mesher is asked to mesh (DESIGN.md "Datasets"): for a point set,

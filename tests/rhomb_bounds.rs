@@ -19,7 +19,7 @@ fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
     if !verdict.passed() {
         return Err(format!("quality verdict failed:\n{verdict}"));
     }
-    let hex = hexmesh::rhomb::root_hexagon(input);
+    let hex = input.bounding_hexagon();
     for (t, tri) in mesh.triangles.iter().enumerate() {
         let [a, b, c] = mesh.corners(t);
         if tri.iter().any(|&v| v as usize >= mesh.vertices.len()) {
@@ -190,7 +190,7 @@ fn a_step_budget_gives_an_incomplete_but_valid_mesh() {
     // No input points are inserted, but the mesh still covers the hexagon with the bounds.
     let hex_only = Pslg {
         points: vec![],
-        hexagon: Some(hexmesh::rhomb::root_hexagon(&input)),
+        hexagon: Some(input.bounding_hexagon()),
         ..Pslg::default()
     };
     check(&hex_only, &run.mesh).unwrap();
@@ -209,7 +209,7 @@ fn output_is_deterministic() {
 /// hexagon's boundary. The mesh there needs edges about 1/20 of that gap, whose 30° and 90°
 /// angles then round by about 1e-6°. Only then may `rhomb` refuse with its rounding error.
 fn beyond_f64(input: &Pslg) -> bool {
-    let hex = hexmesh::rhomb::root_hexagon(input);
+    let hex = input.bounding_hexagon();
     let corners = hex.corners();
     let scale = corners
         .iter()
@@ -313,7 +313,7 @@ proptest! {
 #[test]
 fn max_area_bounds_every_triangle() {
     let input = datasets::by_name("plane-100").unwrap();
-    let limit = hexmesh::rhomb::root_hexagon(&input).area() / 20_000.0;
+    let limit = input.bounding_hexagon().area() / 20_000.0;
     let coarse = Rhomb.mesh(&input, &Params::default()).unwrap().mesh;
     let run = Rhomb
         .mesh(&input, &Params::default().with_max_area(limit))

@@ -30,7 +30,7 @@ pub mod subdivision;
 use std::time::Instant;
 
 use crate::error::{Error, InputError, Result};
-use crate::geom::Point;
+use crate::geom::{Hexagon, Point};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
 
@@ -97,6 +97,18 @@ impl Mesher for HexSimple {
     }
 }
 
+/// The root of the hex meshers' hierarchy for a point set: the given hexagon, or the fitted
+/// one (`Pslg::bounding_hexagon`) turned onto the principal axis of elongated points
+/// (`Hexagon::aligned`, `geom::principal_turn`). The turn is these meshers' own: it has the
+/// same inscribed circle and area, but a line of points along a lattice direction ends at
+/// two edge midpoints, 1e-9 inside the edges, where the references' boundary segments would
+/// force them into needless refinement; they mesh the flat-topped hexagon (`reference_domain`).
+pub fn root_hexagon(input: &Pslg) -> Hexagon {
+    input
+        .hexagon
+        .unwrap_or_else(|| Hexagon::aligned(&input.points))
+}
+
 /// The unrefined hierarchy of a point set, for the mesher called `mesher`: refuses segments,
 /// invalid input, a degenerate bounding hexagon, and points not strictly inside it.
 pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Result<Hierarchy> {
@@ -107,7 +119,7 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
         ));
     }
     input.validate_input()?;
-    let root = input.bounding_hexagon();
+    let root = root_hexagon(input);
     if !(root.circumradius > 0.0 && root.circumradius.is_finite()) {
         return Err(Error::mesher(
             mesher,

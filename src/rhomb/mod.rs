@@ -23,7 +23,6 @@ mod tree;
 use std::time::Instant;
 
 use crate::error::{Error, Result};
-use crate::geom::Hexagon;
 use crate::mesh::Pslg;
 use crate::mesher::{MeshRun, Mesher, Params};
 use crate::quality::ANGLE_SLACK_DEG;
@@ -36,17 +35,6 @@ use tree::{Guard, Stop, Tree};
 pub struct Rhomb;
 
 const NAME: &str = "rhomb";
-
-/// The hexagon `rhomb` meshes: the given one, else the one fitted to the points unturned
-/// (`Hexagon::fitted`), not `Pslg::bounding_hexagon`, which turns the hexagon of elongated
-/// points: turned, f64 places the rhombi's corners off their axes, and on `line-100` the
-/// rounding of its finest rhombi (edges of 1e-10 at coordinates near 1) put an angle 3e-5°
-/// outside [30°, 90°], so `rhomb` refused the input; unturned it meshes it.
-pub fn root_hexagon(input: &Pslg) -> Hexagon {
-    input
-        .hexagon
-        .unwrap_or_else(|| Hexagon::fitted(&input.points))
-}
 
 impl Mesher for Rhomb {
     fn name(&self) -> &'static str {
@@ -82,7 +70,7 @@ impl Mesher for Rhomb {
             ));
         }
         input.validate_input()?;
-        let hex = root_hexagon(input);
+        let hex = input.bounding_hexagon();
         if !(hex.circumradius.is_finite() && hex.circumradius > 0.0) {
             return Err(Error::mesher(
                 NAME,

@@ -45,7 +45,8 @@ pub struct Hexagon {
     /// Distance from the centre to a corner (equal to the edge length).
     pub circumradius: f64,
     /// The rotation about the centre: `Turn::NONE` for the flat-topped hexagon of DESIGN.md;
-    /// a fitted hexagon of an elongated point set is turned (`Hexagon::aligned`).
+    /// `Hexagon::aligned` turns the hexagon of an elongated point set (the hex meshers' root,
+    /// `hex::root_hexagon`).
     pub turn: Turn,
 }
 
@@ -74,7 +75,7 @@ impl Turn {
     }
 }
 
-/// The points whose spread across their principal axis is at most this fraction of the spread
+/// Points whose spread across their principal axis is at most this fraction of the spread
 /// along it (standard deviations) are elongated, and `Hexagon::aligned` turns their hexagon.
 pub const ELONGATED: f64 = 0.25;
 

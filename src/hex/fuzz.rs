@@ -542,10 +542,8 @@ pub fn write_failure(
     let mut s = format!("# fuzz case {case} of seed {seed} ({family}) that failed {mesher}\n");
     if let Some(h) = input.hexagon {
         // The directive `io::read_input` understands.
-        s.push_str(&format!(
-            "# hexmesh: hexagon {} {} {}\n",
-            h.center[0], h.center[1], h.circumradius
-        ));
+        s.push_str(&crate::io::triangle::hexagon_directive_text(&h));
+        s.push('\n');
     }
     s.push_str(&format!("{} 2 0 0\n", input.points.len()));
     for (i, p) in input.points.iter().enumerate() {

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 
-/// The one comment that carries data: `# hexmesh: hexagon CX CY CIRCUMRADIUS` records a
-/// bounding hexagon that Triangle's formats cannot express; Triangle itself ignores it.
+/// The one comment that carries data: `# hexmesh: hexagon CX CY CIRCUMRADIUS [COS SIN]`
+/// records a bounding hexagon (and its turn) that Triangle's formats cannot express; Triangle
+/// itself ignores it.
 pub(crate) const DIRECTIVE: &str = "hexmesh:";
 
 /// One non-empty row: its line and its whitespace-separated fields.

@@ -95,7 +95,7 @@ impl fmt::Display for Format {
 /// [`Pslg::check`]. Problems name the file and the line of the offending point, segment or
 /// hole: malformed text is [`Error::Parse`], a well-formed but unusable input
 /// [`Error::Input`], except duplicate points, which are an [`Error::Parse`] naming both lines.
-/// A `# hexmesh: hexagon CX CY R` comment sets [`Pslg::hexagon`].
+/// A `# hexmesh: hexagon CX CY R [COS SIN]` comment sets [`Pslg::hexagon`].
 pub fn read_input(path: &Path) -> Result<Pslg> {
     let extension = path
         .extension()

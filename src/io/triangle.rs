@@ -12,7 +12,7 @@ use std::path::Path;
 
 use super::lines::{read_text, Lines, Row};
 use crate::error::{Error, Result};
-use crate::geom::{Hexagon, Point};
+use crate::geom::{Hexagon, Point, Turn};
 
 /// Triangle's default numbering when a file has no row to detect it from.
 const DEFAULT_FIRST_INDEX: u32 = 1;
@@ -34,7 +34,8 @@ pub struct NodeFile {
     pub markers: Option<Vec<i64>>,
     /// The number of the first point, 0 or 1; segments and triangles count from it.
     pub first_index: u32,
-    /// The bounding hexagon from a `# hexmesh: hexagon CX CY R` comment (R the circumradius).
+    /// The bounding hexagon from a `# hexmesh: hexagon CX CY R [COS SIN]` comment (R the
+    /// circumradius, COS SIN its turn).
     pub hexagon: Option<Hexagon>,
     /// 1-based source line of each point; empty for data not read from a file. Not written.
     pub lines: Vec<usize>,
@@ -409,22 +410,23 @@ fn parse_nodes_section(lines: &mut Lines) -> Result<NodeFile> {
     Ok(nodes)
 }
 
-/// The `# hexmesh: hexagon CX CY R` comment seen so far, if any.
+/// The `# hexmesh: hexagon CX CY R [COS SIN]` comment seen so far, if any (COS SIN: the
+/// hexagon's `Turn`, absent for the flat-topped hexagon).
 fn hexagon_directive(lines: &Lines) -> Result<Option<Hexagon>> {
     let mut found = None;
     for d in &lines.directives {
         let bad = |message: &str| Error::parse(lines.path(), d.line, message.to_string());
         if d.tokens.first() != Some(&"hexagon") {
             return Err(bad(
-                "unknown hexmesh directive; expected '# hexmesh: hexagon CX CY R'",
+                "unknown hexmesh directive; expected '# hexmesh: hexagon CX CY R [COS SIN]'",
             ));
         }
-        if d.tokens.len() != 4 {
+        if d.tokens.len() != 4 && d.tokens.len() != 6 {
             return Err(bad(
-                "expected '# hexmesh: hexagon CX CY R' with three numbers",
+                "expected '# hexmesh: hexagon CX CY R [COS SIN]' with three or five numbers",
             ));
         }
-        let mut v = [0.0; 3];
+        let mut v = [1.0, 0.0, 0.0, 1.0, 0.0];
         for (slot, token) in v.iter_mut().zip(&d.tokens[1..]) {
             *slot = token
                 .parse::<f64>()
@@ -435,12 +437,37 @@ fn hexagon_directive(lines: &Lines) -> Result<Option<Hexagon>> {
         if v[2] <= 0.0 {
             return Err(bad("the hexagon's circumradius must be positive"));
         }
+        let turn = Turn {
+            cos: v[3],
+            sin: v[4],
+        };
+        if ((turn.cos * turn.cos + turn.sin * turn.sin) - 1.0).abs() > 1e-12 {
+            return Err(bad(
+                "the hexagon's turn (COS SIN) must be a unit vector: cos² + sin² = 1",
+            ));
+        }
         if found.is_some() {
             return Err(bad("a second hexagon directive"));
         }
-        found = Some(Hexagon::new([v[0], v[1]], v[2]));
+        found = Some(Hexagon {
+            turn,
+            ..Hexagon::new([v[0], v[1]], v[2])
+        });
     }
     Ok(found)
+}
+
+/// The `# hexmesh: hexagon` comment that `read_input` reads back as `h`, bit for bit (the
+/// turn only when there is one), without the line break.
+pub fn hexagon_directive_text(h: &Hexagon) -> String {
+    let mut s = format!(
+        "# hexmesh: hexagon {:?} {:?} {:?}",
+        h.center[0], h.center[1], h.circumradius
+    );
+    if !h.turn.is_none() {
+        s.push_str(&format!(" {:?} {:?}", h.turn.cos, h.turn.sin));
+    }
+    s
 }
 
 /// Writes a `.node` file.
@@ -543,14 +570,16 @@ fn format_nodes(path: &Path, nodes: &NodeFile, text: &mut String) -> Result<()> 
     if let Some(h) = nodes.hexagon {
         finite(
             path,
-            &[h.center[0], h.center[1], h.circumradius],
+            &[
+                h.center[0],
+                h.center[1],
+                h.circumradius,
+                h.turn.cos,
+                h.turn.sin,
+            ],
             "the hexagon",
         )?;
-        let _ = writeln!(
-            text,
-            "# hexmesh: hexagon {:?} {:?} {:?}",
-            h.center[0], h.center[1], h.circumradius
-        );
+        let _ = writeln!(text, "{}", hexagon_directive_text(&h));
     }
     let base = nodes.first_index as usize;
     for (k, p) in nodes.points.iter().enumerate() {
@@ -704,5 +733,34 @@ mod tests {
         let n = node("# hexmesh: hexagon 0.5 -1 2\n1 2 0 0\n1 0 0\n").expect("directive");
         assert_eq!(n.hexagon, Some(Hexagon::new([0.5, -1.0], 2.0)));
         assert!(node("1 2 0 0\n1 0 0\n# hexmesh: square 1\n").is_err());
+    }
+
+    #[test]
+    fn a_turned_hexagon_is_written_and_read_back_bit_for_bit() {
+        let turn = crate::geom::principal_turn(&[[0.0, 0.0], [1.0, 0.37], [0.4, 0.148]]);
+        for hex in [
+            Hexagon::new([0.5, -1.0], 2.0),
+            Hexagon {
+                turn,
+                ..Hexagon::new([0.1, 1.0 / 3.0], 0.7)
+            },
+        ] {
+            let text = format!("{}\n1 2 0 0\n1 0 0\n", hexagon_directive_text(&hex));
+            assert_eq!(node(&text).expect("directive").hexagon, Some(hex));
+        }
+        assert_eq!(
+            hexagon_directive_text(&Hexagon::new([0.5, -1.0], 2.0)),
+            "# hexmesh: hexagon 0.5 -1.0 2.0"
+        );
+    }
+
+    #[test]
+    fn a_hexagon_turn_that_is_not_a_unit_vector_or_half_given_is_refused() {
+        let e = node("# hexmesh: hexagon 0 0 1 0.6 0.7\n1 2 0 0\n1 0 0\n").expect_err("0.6 0.7");
+        assert!(e.to_string().contains("unit vector"), "{e}");
+        assert_eq!(line_of(e), 1);
+        let e = node("# hexmesh: hexagon 0 0 1 0.6\n1 2 0 0\n1 0 0\n").expect_err("one number");
+        assert!(e.to_string().contains("three or five numbers"), "{e}");
+        assert!(node("# hexmesh: hexagon 0 0 1 0.6 -0.8\n1 2 0 0\n1 0 0\n").is_ok());
     }
 }

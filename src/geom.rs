@@ -50,6 +50,12 @@ pub struct Hexagon {
     pub turn: Turn,
 }
 
+/// Offsets of the six corners (0°, 60°, …, 300°) of a hexagon of circumradius r from its
+/// centre, in units of r/2 along its x axis and √3·r/2 along its y axis: in the (X, Y)
+/// coordinates of `Lattice::grid_point`, relative to a cell's centre (3i, i + 2j).
+pub(crate) const CORNER_X: [i64; 6] = [2, 1, -1, -2, -1, 1];
+pub(crate) const CORNER_Y: [i64; 6] = [0, 1, 1, 0, -1, -1];
+
 /// A rotation by θ about a hexagon's centre, as (cos θ, sin θ) (of unit length up to
 /// rounding; the stored values are the ones every position is computed from).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,19 +102,20 @@ pub const ELONGATED: f64 = 0.25;
 /// Only +, −, ×, ÷ and square roots (correctly rounded in IEEE 754) make it, on sums taken in
 /// input order, so it has the same bits on every machine.
 pub fn principal_turn(points: &[Point]) -> Turn {
-    let finite: Vec<Point> = points
-        .iter()
-        .copied()
-        .filter(|p| p[0].is_finite() && p[1].is_finite())
-        .collect();
-    if finite.len() < 2 {
+    let finite = || {
+        points
+            .iter()
+            .filter(|p| p[0].is_finite() && p[1].is_finite())
+    };
+    let count = finite().count();
+    if count < 2 {
         return Turn::NONE;
     }
-    let n = finite.len() as f64;
-    let mx = finite.iter().map(|p| p[0]).sum::<f64>() / n;
-    let my = finite.iter().map(|p| p[1]).sum::<f64>() / n;
+    let n = count as f64;
+    let mx = finite().map(|p| p[0]).sum::<f64>() / n;
+    let my = finite().map(|p| p[1]).sum::<f64>() / n;
     let (mut sxx, mut syy, mut sxy) = (0.0, 0.0, 0.0);
-    for p in &finite {
+    for p in finite() {
         let (dx, dy) = (p[0] - mx, p[1] - my);
         sxx += dx * dx;
         syy += dy * dy;
@@ -181,10 +188,8 @@ impl Hexagon {
             // it constructs are these bits.
             let axes = self.axes();
             let [cx, cy] = self.center;
-            const X: [f64; 6] = [2.0, 1.0, -1.0, -2.0, -1.0, 1.0];
-            const Y: [f64; 6] = [0.0, 1.0, 1.0, 0.0, -1.0, -1.0];
             return std::array::from_fn(|m| {
-                let o = turned_offset(axes, X[m], Y[m], 0.5);
+                let o = turned_offset(axes, CORNER_X[m] as f64, CORNER_Y[m] as f64, 0.5);
                 [cx + o[0], cy + o[1]]
             });
         }

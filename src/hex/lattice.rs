@@ -9,7 +9,7 @@
 
 use std::hash::{BuildHasherDefault, Hasher};
 
-use crate::geom::{turned_offset, Hexagon, Point, Turn};
+use crate::geom::{turned_offset, Hexagon, Point, Turn, CORNER_X, CORNER_Y};
 
 /// Deepest level the mesher constructs. Lattice coordinates of level k need k + 2 bits, and
 /// they must stay exact in an f64 mantissa (53 bits) when a position is computed.
@@ -144,11 +144,6 @@ pub enum Parents {
     Central(Key),
     Edge(Key, Key),
 }
-
-/// Offsets of the six cell corners (0°, 60°, …, 300°) in the (X, Y) coordinates of
-/// `Lattice::grid_point`, relative to the centre (3i, i + 2j).
-const CORNER_X: [i64; 6] = [2, 1, -1, -2, -1, 1];
-const CORNER_Y: [i64; 6] = [0, 1, 1, 0, -1, -1];
 
 /// Positions of lattice points of a given root hexagon.
 #[derive(Debug, Clone, Copy, PartialEq)]

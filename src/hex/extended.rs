@@ -296,9 +296,9 @@ fn refine_and_verify(
     h.allow_checked_levels();
     refine_simple(h)?;
     // The extended rules act on full leaves only, and `extended_actions` sorts what it finds,
-    // so the full leaves in the set's order do (not every leaf with its cell, sorted: at
-    // plane-1m about 5 GB built and sorted once).
-    let candidates = h.full_leaves_unordered();
+    // so the full leaves as a block set do (not every leaf with its cell, sorted: at plane-1m
+    // about 5 GB built and sorted once).
+    let candidates: KeySet = h.full_leaves_unordered().into_iter().collect();
     match extend_and_verify(h, stats, state, candidates, None)? {
         Some(mesh) => Ok(mesh),
         None => Ok(final_dual(h, state)),
@@ -673,7 +673,7 @@ pub(crate) fn extend_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
     state: &mut RingState,
-    mut candidates: Vec<Key>,
+    mut candidates: KeySet,
     mut changed: Option<Vec<Key>>,
 ) -> Result<Option<TriMesh>, Stop> {
     let mut cache = RingCache::default();
@@ -980,11 +980,29 @@ enum Scope {
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
-pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &[Key]) -> Vec<(Key, Why)> {
+pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &KeySet) -> Vec<(Key, Why)> {
     let mut acts: Vec<(Key, Why)> = r.conflicts.iter().map(|&k| (k, Why::Other)).collect();
-    // The candidates are examined independently (read-only), so large lists are split over
-    // the machine's threads; the result is sorted, the same for any split.
-    for part in in_parallel(candidates, |chunk| actions_of(h, r, chunk)) {
+    // Only an unsubdivided cell with a subdivided neighbour (a full leaf with fins) has a rule
+    // here, and most candidates have none: a whole block of candidates is sifted with its
+    // subdivided cells and theirs beside it at once (`Hierarchy::subdivided_block`), and only
+    // what is left is examined cell by cell. The blocks are examined independently
+    // (read-only), so long lists are split over the machine's threads; the result is sorted,
+    // the same for any split.
+    let blocks: Vec<(Key, u64)> = candidates.blocks().collect();
+    let parts = in_parallel_from(&blocks, PARALLEL_MIN / 16, |chunk| {
+        let mut keys = Vec::new();
+        for &(b, word) in chunk {
+            let (subdivided, beside) = h.subdivided_block(b);
+            let mut left = word & !subdivided & beside;
+            while left != 0 {
+                let n = left.trailing_zeros() as i64;
+                left &= left - 1;
+                keys.push(Key::new(b.k, (b.i << 3) | (n >> 3), (b.j << 3) | (n & 7)));
+            }
+        }
+        actions_of(h, r, &keys)
+    });
+    for part in parts {
         acts.extend(part);
     }
     acts.sort_unstable_by_key(|a| (a.0.packed(), a.1));
@@ -1115,9 +1133,9 @@ pub(crate) enum Why {
 /// The cells whose extended rules can change when the hexagons `subdivided` are split: the
 /// next level around each (its children and the rings of a point moved into them), its own
 /// level (neighbours that got fins, rings that lost their point), and the level above (hexagons
-/// whose fins border those neighbours). Without duplicates, in a deterministic order that
-/// nothing depends on (`extended_actions` sorts what it finds).
-pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
+/// whose fins border those neighbours). As a block set: at plane-1m a round's candidates are
+/// tens of millions of cells, a few bytes each here against 24 in a list of keys.
+pub(crate) fn around(subdivided: &[Key]) -> KeySet {
     // A disc of radius R around a cell lies inside the union of the discs of radius R around
     // its six neighbours (a step from the cell towards any point of the disc brings it within
     // R of that neighbour), and the same holds for the discs around central children (radius
@@ -1131,7 +1149,7 @@ pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
         .map(|s| Key::new(s.k - 1, s.i.div_euclid(2), s.j.div_euclid(2)))
         .collect();
     let interior = |set: &FxHashSet<Key>, c: Key| (0..6).all(|d| set.contains(&c.neighbor(d)));
-    let mut cells = KeySet::with_capacity(24 * subdivided.len() + 64);
+    let mut cells = KeySet::with_capacity(4 * subdivided.len() + 64);
     for &s in subdivided {
         if !interior(&own, s) {
             cells.insert_disc(s.central_child(), 4);
@@ -1143,7 +1161,7 @@ pub(crate) fn around(subdivided: &[Key]) -> Vec<Key> {
             cells.insert_disc(p, 3);
         }
     }
-    cells.iter().collect()
+    cells
 }
 
 /// The centre of a MOVED_CENTER_1 or MOVED_CENTER_2 full leaf relocated as in Sec. 5.4:

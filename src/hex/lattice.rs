@@ -145,6 +145,28 @@ pub enum Parents {
     Edge(Key, Key),
 }
 
+/// The bits of `next` seen one row of cells along i from `word` (`step` = 1: cell (i, j) gets
+/// the bit of (i + 1, j); -1: of (i - 1, j)), where `next` is the block beyond, in the
+/// 8 × 8 layout of `KeySet`.
+fn shift_i(word: u64, next: u64, step: i64) -> u64 {
+    if step > 0 {
+        (word >> 8) | (next << 56)
+    } else {
+        (word << 8) | (next >> 56)
+    }
+}
+
+/// As `shift_i`, along j (columns: bit `j & 7` of each row of eight).
+fn shift_j(word: u64, next: u64, step: i64) -> u64 {
+    const FIRST: u64 = 0x0101_0101_0101_0101;
+    const LAST: u64 = FIRST << 7;
+    if step > 0 {
+        ((word >> 1) & !LAST) | ((next & FIRST) << 7)
+    } else {
+        ((word << 1) & !FIRST) | ((next & LAST) >> 7)
+    }
+}
+
 /// Positions of lattice points of a given root hexagon.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lattice {
@@ -390,6 +412,31 @@ impl KeySet {
         self.blocks.get(&block).copied().unwrap_or(0)
     }
 
+    /// For the 8 × 8 block `block` (a key whose i and j are block coordinates, `i >> 3` and
+    /// `j >> 3` of its cells): its word, and the cells of the block with at least one of their
+    /// six neighbours in the set, as a word of the same layout (bit `(i & 7) << 3 | (j & 7)`).
+    /// Seven block lookups and shifts for 64 cells, where `neighbourhood` takes one or more
+    /// lookups a cell.
+    pub fn block_and_beside(&self, block: Key) -> (u64, u64) {
+        let at = |di: i64, dj: i64| self.word(Key::new(block.k, block.i + di, block.j + dj));
+        let c = at(0, 0);
+        let (up, down, left, right) = (at(-1, 0), at(1, 0), at(0, -1), at(0, 1));
+        let (up_right, down_left) = (at(-1, 1), at(1, -1));
+        let mut beside = shift_i(c, down, 1) | shift_i(c, up, -1);
+        beside |= shift_j(c, right, 1) | shift_j(c, left, -1);
+        // The diagonal directions (-1, 1) and (1, -1): first along i in the two block columns
+        // involved, then along j.
+        beside |= shift_j(shift_i(c, up, -1), shift_i(right, up_right, -1), 1);
+        beside |= shift_j(shift_i(c, down, 1), shift_i(left, down_left, 1), -1);
+        (c, beside)
+    }
+
+    /// The occupied blocks with their words (bit `(i & 7) << 3 | (j & 7)` of block
+    /// `(k, i >> 3, j >> 3)`), in no particular order.
+    pub fn blocks(&self) -> impl Iterator<Item = (Key, u64)> + '_ {
+        self.blocks.iter().map(|(b, &w)| (*b, w))
+    }
+
     /// Adds every cell within lattice distance `radius` of `c` (at its level), one table
     /// lookup per block the disc meets rather than one per cell.
     pub fn insert_disc(&mut self, c: Key, radius: i64) {
@@ -444,6 +491,17 @@ impl KeySet {
 /// so most lookups land in a block it has just used instead of a random slot of a table of
 /// millions of entries, and the table of blocks is several times smaller. `u32::MAX` is not
 /// a value (it marks empty slots).
+impl FromIterator<Key> for KeySet {
+    fn from_iter<I: IntoIterator<Item = Key>>(keys: I) -> KeySet {
+        let keys = keys.into_iter();
+        let mut set = KeySet::with_capacity(keys.size_hint().0);
+        for key in keys {
+            set.insert(key);
+        }
+        set
+    }
+}
+
 #[derive(Debug, Clone, Default)]
 pub struct KeyIndex {
     blocks: FxHashMap<Key, u32>,
@@ -625,6 +683,37 @@ mod tests {
                 });
                 let own = (set.contains(&key) as u8) << 6;
                 assert_eq!(set.neighbourhood(key), want | own, "{key:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_cells_beside_a_block_are_the_cells_with_a_neighbour_looked_up_one_by_one() {
+        let mut x: u64 = 0x51_7c_c1_b7_27_22_0a_95;
+        for density in [3u64, 20, 60] {
+            let mut set = KeySet::default();
+            for _ in 0..400 {
+                x ^= x << 13;
+                x ^= x >> 7;
+                x ^= x << 17;
+                if x % 64 < density {
+                    set.insert(Key::new(
+                        3,
+                        (x >> 8) as i64 % 20 - 10,
+                        (x >> 24) as i64 % 20 - 10,
+                    ));
+                }
+            }
+            for bi in -3..3 {
+                for bj in -3..3 {
+                    let (own, beside) = set.block_and_beside(Key::new(3, bi, bj));
+                    for n in 0..64 {
+                        let key = Key::new(3, (bi << 3) | (n >> 3), (bj << 3) | (n & 7));
+                        let mask = set.neighbourhood(key);
+                        assert_eq!(own >> n & 1 == 1, mask & 0x40 != 0, "{key:?}");
+                        assert_eq!(beside >> n & 1 == 1, mask & 0x3f != 0, "{key:?}");
+                    }
+                }
             }
         }
     }

@@ -86,7 +86,7 @@ use crate::geom::{dist, incircle, min_enclosing_circle, orient2d, Hexagon, Point
 use crate::hex::classify::{fin_mask, rings};
 use crate::hex::dual::{self, Placement};
 use crate::hex::extended::{around, extended_actions, min_angle_bound, relocations};
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeySet};
 use crate::hex::refine::{drain, is_fin, refine_simple};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
@@ -316,7 +316,7 @@ pub fn refine_pslg(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<S
     let segments = segment_points(input);
     let mut stats = PslgStats::default();
     let outcome = refine_simple(&mut h).and_then(|()| {
-        let candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
+        let candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
         apply_rules(&mut h, input, &segments, candidates, &mut stats).map(|_| ())
     });
     match outcome {
@@ -355,7 +355,7 @@ fn apply_rules(
     h: &mut Hierarchy,
     input: &Pslg,
     segments: &[[Point; 2]],
-    mut candidates: Vec<Key>,
+    mut candidates: KeySet,
     stats: &mut PslgStats,
 ) -> std::result::Result<BTreeMap<Key, Vec<u32>>, Stop> {
     loop {
@@ -383,7 +383,7 @@ fn drive(
     stats: &mut PslgStats,
 ) -> std::result::Result<(TriMesh, Vec<bool>), Fail> {
     refine_simple(h)?;
-    let mut candidates: Vec<Key> = h.leaves().into_iter().map(|(k, _)| k).collect();
+    let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
     let mut first_size = None;
     loop {
         stats.rounds += 1;

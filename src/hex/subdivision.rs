@@ -124,6 +124,13 @@ impl Hierarchy {
         (m & 0x40 != 0, m & 0x3f)
     }
 
+    /// For the 8 × 8 block of cells `block` (`KeySet` layout): which of them are subdivided,
+    /// and which have a subdivided neighbour (inside the bounding hexagon: only cells inside
+    /// are ever subdivided), as two words (`KeySet::block_and_beside`).
+    pub fn subdivided_block(&self, block: Key) -> (u64, u64) {
+        self.subdivided.block_and_beside(block)
+    }
+
     /// The subdivided hexagons, sorted.
     pub fn subdivided_sorted(&self) -> Vec<Key> {
         let mut v: Vec<Key> = self.subdivided.iter().collect();

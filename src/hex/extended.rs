@@ -502,16 +502,34 @@ pub(crate) fn splice(
 
 /// Keeps in `placed` the place of every vertex of `mesh` (with canonical keys `keys`) that
 /// moved from where it was in `before`.
-fn record_moves(
-    placed: &mut FxHashMap<Key, Point>,
-    before: &[Point],
-    mesh: &TriMesh,
-    keys: &[Key],
-) {
-    for (v, (old, new)) in before.iter().zip(&mesh.vertices).enumerate() {
+fn record_moves(placed: &mut FxHashMap<Key, Point>, moves: Moves, mesh: &TriMesh, keys: &[Key]) {
+    let mut from = moves.from;
+    // Stable: the first entry of a vertex holds where it stood before it moved at all.
+    from.sort_by_key(|e| e.0);
+    from.dedup_by_key(|e| e.0);
+    for (v, old) in from {
+        let new = mesh.vertices[v];
         if old != new {
-            placed.insert(keys[v], *new);
+            placed.insert(keys[v], new);
         }
+    }
+}
+
+/// What `settle_contested` or `polish_rings` did: how many moves it made, and each vertex it
+/// moved with the place it had before (`record_moves` keeps those that end elsewhere), instead
+/// of a copy of every vertex of the mesh to compare with afterwards (0.9 GB at plane-1m).
+#[derive(Debug, Default)]
+struct Moves {
+    count: u64,
+    from: Vec<(usize, Point)>,
+}
+
+impl Moves {
+    /// Moves vertex `v` of `mesh` to `p`.
+    fn make(&mut self, mesh: &mut TriMesh, v: usize, p: Point) {
+        self.count += 1;
+        self.from.push((v, mesh.vertices[v]));
+        mesh.vertices[v] = p;
     }
 }
 
@@ -739,6 +757,10 @@ pub(crate) fn extend_and_verify(
             }
             candidates = around(&h.log);
         }
+        // The work list of the subdivisions is empty now but holds the room of its longest
+        // batch (25 cells a subdivision: about 2 GB at plane-1m), which the check does not
+        // need.
+        h.work = Vec::new();
         // The rings with the decisions of `state`, changed in place and given back to the
         // cache (undone) before the next subdivisions.
         let mut r = cache.take(h);
@@ -786,22 +808,24 @@ pub(crate) fn extend_and_verify(
                 }
             };
             stats.checked_triangles += mesh.triangles.len() as u64;
-            let before = mesh.vertices.clone();
             let movable = |k: Key| {
                 movable
                     .as_ref()
                     .is_none_or(|m| m.contains(h.leaf_of_vertex(k)))
             };
             let w = &settle_cells;
+            let mut settled = Moves::default();
             for with_neighbours in [false, true] {
                 let pass = SettlePass {
                     rings: &r,
                     cells: w,
                     with_neighbours,
                 };
-                stats.settled += settle_contested(h, &mut mesh, &keys, l_min, pass, &movable);
+                let moves = settle_contested(h, &mut mesh, &keys, l_min, pass, &movable);
+                stats.settled += moves.count;
+                settled.from.extend(moves.from);
             }
-            record_moves(&mut state.placed, &before, &mesh, &keys);
+            record_moves(&mut state.placed, settled, &mesh, &keys);
             // A triangle at a fin vertex is blamed on the MOVED_CENTER_3 hexagon of the fin
             // (`blamed` keeps the vertex keys this replaces, for `splice`).
             let mut blamed = Vec::new();
@@ -843,13 +867,12 @@ pub(crate) fn extend_and_verify(
                 // shortest-edge bound of Sec. 6.3), polish the ring cells of the rejected
                 // triangles with a finer local search; only a mesh it repairs whole is kept.
                 let tris: Vec<usize> = bad.iter().map(|b| b.triangle).collect();
-                let trial_before = mesh.vertices.clone();
                 // Its moves never add a bad triangle or a short edge, so they are kept even
                 // when other triangles (elsewhere) still need a subdivision.
                 let moved = polish_rings(h, &r, &mut mesh, &keys, &tris, l_min, &movable);
-                if moved > 0 {
-                    stats.polished += moved;
-                    record_moves(&mut state.placed, &trial_before, &mesh, &keys);
+                if moved.count > 0 {
+                    stats.polished += moved.count;
+                    record_moves(&mut state.placed, moved, &mesh, &keys);
                     bad = offending_leaves(h, &mesh, &keys);
                 }
                 if !bad.is_empty() {
@@ -1373,7 +1396,7 @@ impl AngleFilter {
 /// neighbouring contested cells. Cells whose triangles are good stay where their role put
 /// them. A second pass (`with_neighbours`) also moves the ring cells next to contested ones,
 /// accepting only moves that lower the number of bad triangles around the moved cell.
-/// Returns the number of moves.
+/// Returns its moves (`Moves`).
 fn settle_contested(
     h: &Hierarchy,
     mesh: &mut TriMesh,
@@ -1381,14 +1404,14 @@ fn settle_contested(
     l_min: f64,
     pass: SettlePass<'_>,
     movable: &dyn Fn(Key) -> bool,
-) -> u64 {
+) -> Moves {
     let SettlePass {
         rings: r,
         cells: wanted,
         with_neighbours,
     } = pass;
     if r.contested.is_empty() && !with_neighbours {
-        return 0;
+        return Moves::default();
     }
     let slack = SELF_CHECK_SLACK;
     // The vertices of contested cells, with their lattice centre and radius, sorted by key.
@@ -1401,7 +1424,7 @@ fn settle_contested(
         }
     }
     if cells.is_empty() {
-        return 0;
+        return Moves::default();
     }
     cells.sort_by_key(|c| c.0);
     // The cell of each mesh vertex (u32::MAX: none), and the triangles around each cell.
@@ -1515,7 +1538,7 @@ fn settle_contested(
             flagged[t] = 1 + flag(mesh, t) as u8;
         }
     }
-    let mut moves = 0;
+    let mut moves = Moves::default();
     for _sweep in 0..6 {
         let mut changed = false;
         for (n, &(_, v, centre, radius)) in cells.iter().enumerate() {
@@ -1540,8 +1563,7 @@ fn settle_contested(
                 }
             }
             if best != here {
-                mesh.vertices[v] = best;
-                moves += 1;
+                moves.make(mesh, v, best);
                 changed = true;
                 for &t in incident(n) {
                     flagged[t] = 1 + flag(mesh, t) as u8;
@@ -1565,7 +1587,7 @@ fn settle_contested(
 /// three cells apart and 5.1·r to 7.2·r apart need this: their rings pull the cells between
 /// them two ways, the coarser search of `settle_contested` left 0.06° to 5° of violation on 3
 /// of 100,000 fuzzed sets (fixtures hex-polish-*), and a subdivision there goes below r_min
-/// (Sec. 6.3) and shortens edges below `l_min`. Returns the number of moves.
+/// (Sec. 6.3) and shortens edges below `l_min`. Returns its moves (`Moves`).
 fn polish_rings(
     h: &Hierarchy,
     r: &Rings,
@@ -1574,7 +1596,7 @@ fn polish_rings(
     bad: &[usize],
     l_min: f64,
     movable: &dyn Fn(Key) -> bool,
-) -> u64 {
+) -> Moves {
     let slack = SELF_CHECK_SLACK;
     // Ring cells by canonical key.
     let mut ring: FxHashMap<Key, Key> = FxHashMap::default();
@@ -1658,7 +1680,7 @@ fn polish_rings(
             (a.cos(), a.sin())
         })
         .collect();
-    let mut moves = 0;
+    let mut moves = Moves::default();
     for _sweep in 0..24 {
         let mut changed = false;
         for &v in &cells {
@@ -1689,8 +1711,7 @@ fn polish_rings(
                 }
             }
             if here != mesh.vertices[v] {
-                mesh.vertices[v] = here;
-                moves += 1;
+                moves.make(mesh, v, here);
                 changed = true;
             }
         }

@@ -501,7 +501,7 @@ pub(crate) fn splice(
 }
 
 /// Keeps in `placed` the place of every vertex of `mesh` (with canonical keys `keys`) that
-/// moved from where it was in `before`.
+/// `moves` moved and that ends elsewhere than it stood before.
 fn record_moves(placed: &mut FxHashMap<Key, Point>, moves: Moves, mesh: &TriMesh, keys: &[Key]) {
     let mut from = moves.from;
     // Stable: the first entry of a vertex holds where it stood before it moved at all.

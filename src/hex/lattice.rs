@@ -486,11 +486,6 @@ impl KeySet {
     }
 }
 
-/// A map from keys to `u32` kept as blocks of 4 × 4 cells of one level, one cache line each,
-/// in the order they were first used: the dual's recursion meets a vertex's neighbours next,
-/// so most lookups land in a block it has just used instead of a random slot of a table of
-/// millions of entries, and the table of blocks is several times smaller. `u32::MAX` is not
-/// a value (it marks empty slots).
 impl FromIterator<Key> for KeySet {
     fn from_iter<I: IntoIterator<Item = Key>>(keys: I) -> KeySet {
         let keys = keys.into_iter();
@@ -502,6 +497,11 @@ impl FromIterator<Key> for KeySet {
     }
 }
 
+/// A map from keys to `u32` kept as blocks of 4 × 4 cells of one level, one cache line each,
+/// in the order they were first used: the dual's recursion meets a vertex's neighbours next,
+/// so most lookups land in a block it has just used instead of a random slot of a table of
+/// millions of entries, and the table of blocks is several times smaller. `u32::MAX` is not
+/// a value (it marks empty slots).
 #[derive(Debug, Clone, Default)]
 pub struct KeyIndex {
     blocks: FxHashMap<Key, u32>,

@@ -1020,7 +1020,7 @@ pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &KeySet) ->
             while left != 0 {
                 let n = left.trailing_zeros() as i64;
                 left &= left - 1;
-                keys.push(Key::new(b.k, (b.i << 3) | (n >> 3), (b.j << 3) | (n & 7)));
+                keys.push(KeySet::cell_in_block(b, n));
             }
         }
         actions_of(h, r, &keys)

@@ -332,6 +332,11 @@ impl KeySet {
         }
     }
 
+    /// The cell of bit `n` of block `block` (the inverse of `slot`).
+    pub fn cell_in_block(block: Key, n: i64) -> Key {
+        Key::new(block.k, (block.i << 3) | (n >> 3), (block.j << 3) | (n & 7))
+    }
+
     /// The block of `key` and its bit there (`>>` and `&` floor negative coordinates).
     fn slot(key: Key) -> (Key, u64) {
         let block = Key::new(key.k, key.i >> 3, key.j >> 3);
@@ -481,7 +486,7 @@ impl KeySet {
         self.blocks.iter().flat_map(|(b, &w)| {
             (0..64)
                 .filter(move |n| w & (1u64 << n) != 0)
-                .map(move |n| Key::new(b.k, (b.i << 3) | (n >> 3), (b.j << 3) | (n & 7)))
+                .map(move |n| KeySet::cell_in_block(*b, n))
         })
     }
 }
@@ -708,7 +713,7 @@ mod tests {
                 for bj in -3..3 {
                     let (own, beside) = set.block_and_beside(Key::new(3, bi, bj));
                     for n in 0..64 {
-                        let key = Key::new(3, (bi << 3) | (n >> 3), (bj << 3) | (n & 7));
+                        let key = KeySet::cell_in_block(Key::new(3, bi, bj), n);
                         let mask = set.neighbourhood(key);
                         assert_eq!(own >> n & 1 == 1, mask & 0x40 != 0, "{key:?}");
                         assert_eq!(beside >> n & 1 == 1, mask & 0x3f != 0, "{key:?}");

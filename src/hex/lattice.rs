@@ -317,19 +317,177 @@ pub type FxHashSet<K> = std::collections::HashSet<K, FxBuild>;
 /// A set of keys kept as blocks of 8 × 8 cells of one level, one bit each: neighbouring cells
 /// share a block, so the table is several times smaller than a set of keys and the lookups
 /// of a neighbourhood stay in cache (the hierarchy asks for the subdivided state of every
-/// cell near the one it looks at).
+/// cell near the one it looks at). The blocks of a level that fills up move from the table
+/// to an array over the whole level (`DenseLevel`). Iteration order depends on which levels
+/// are dense; no caller's result depends on it.
 #[derive(Debug, Clone, Default)]
 pub struct KeySet {
-    blocks: FxHashMap<Key, u64>,
+    /// The blocks of the levels kept in a table, and of dense levels outside their array.
+    sparse: FxHashMap<Key, u64>,
+    /// Per level: how many blocks `sparse` holds, and the level's array once it is dense.
+    levels: Vec<Level>,
     len: usize,
 }
 
+/// One level of a `KeySet`.
+#[derive(Debug, Clone, Default)]
+struct Level {
+    sparse_blocks: usize,
+    dense: Option<DenseLevel>,
+}
+
+/// The words of one level as an array over the blocks of a rectangle of lattice coordinates
+/// that holds the bounding hexagon (with a margin): a look-up is an index computation and
+/// one read instead of a hash, a probe and a key comparison. A level turns dense once its
+/// blocks would fill a 32nd of the array (8 bytes a word against about 38 a block in the
+/// table, so at most about seven times the table's room when it switches; levels filled
+/// less stay in the table). Measured here: an eighth left the hierarchy's busiest levels in
+/// the table on plane-1k, whose lookups then cost more than before.
+/// The array is laid out in tiles of 8 × 8 blocks (64 × 64 cells, 512 bytes), so that cells
+/// near each other in the plane are near each other in memory.
+#[derive(Debug, Clone)]
+struct DenseLevel {
+    /// Block coordinates of the first block of the first tile (multiples of 8).
+    bi0: i64,
+    bj0: i64,
+    /// Tiles along i and along j.
+    tiles_i: i64,
+    tiles_j: i64,
+    words: Vec<u64>,
+}
+
+impl DenseLevel {
+    /// Cells beyond the bounding hexagon that a set may hold (neighbours, rings and discs
+    /// around cells near the boundary) within this many cells stay in the array.
+    const MARGIN: i64 = 16;
+    /// Levels whose array would be larger than this many words stay in the table.
+    const MAX_WORDS: i64 = 1 << 25;
+
+    /// The rectangle of level `k`: the root is |i + 2j| ≤ 2^k, |3i| + |i + 2j| ≤ 2^(k+1)
+    /// (`Key::inside`), so |i| ≤ 2^(k+1)/3 and |j| ≤ (2^k + |i|)/2 ≤ 5/6·2^k.
+    fn shape(k: u8) -> Option<(i64, i64, i64, i64)> {
+        // Level 15 already needs more than `MAX_WORDS`; deeper levels would overflow below.
+        if k > 16 {
+            return None;
+        }
+        let half = 1i64 << k;
+        let ri = (2 * half) / 3 + 1 + Self::MARGIN;
+        let rj = (5 * half) / 6 + 1 + Self::MARGIN;
+        let (bi0, bj0) = ((-ri >> 3) & !7, (-rj >> 3) & !7);
+        let tiles_i = ((ri >> 3) - bi0) / 8 + 1;
+        let tiles_j = ((rj >> 3) - bj0) / 8 + 1;
+        (tiles_i * tiles_j * 64 <= Self::MAX_WORDS).then_some((bi0, bj0, tiles_i, tiles_j))
+    }
+
+    fn new(k: u8) -> Option<DenseLevel> {
+        let (bi0, bj0, tiles_i, tiles_j) = DenseLevel::shape(k)?;
+        Some(DenseLevel {
+            bi0,
+            bj0,
+            tiles_i,
+            tiles_j,
+            words: vec![0; (tiles_i * tiles_j * 64) as usize],
+        })
+    }
+
+    /// The index of block (bi, bj) in `words`, if the rectangle holds it.
+    #[inline]
+    fn index(&self, bi: i64, bj: i64) -> Option<usize> {
+        let (di, dj) = (bi - self.bi0, bj - self.bj0);
+        let (ti, tj) = (di >> 3, dj >> 3);
+        if di < 0 || dj < 0 || ti >= self.tiles_i || tj >= self.tiles_j {
+            return None;
+        }
+        Some((((ti * self.tiles_j + tj) << 6) | ((di & 7) << 3) | (dj & 7)) as usize)
+    }
+
+    /// The block of index `x` (the inverse of `index`).
+    fn block(&self, k: u8, x: usize) -> Key {
+        let x = x as i64;
+        let (tile, n) = (x >> 6, x & 63);
+        let (ti, tj) = (tile / self.tiles_j, tile % self.tiles_j);
+        Key::new(
+            k,
+            self.bi0 + (ti << 3) + (n >> 3),
+            self.bj0 + (tj << 3) + (n & 7),
+        )
+    }
+}
+
 impl KeySet {
+    /// A set for about `keys` keys. Levels that fill up turn dense, so only a share of the
+    /// hint goes to the table at first.
     pub fn with_capacity(keys: usize) -> KeySet {
         KeySet {
-            blocks: FxHashMap::with_capacity_and_hasher(keys / 8 + 16, Default::default()),
+            sparse: FxHashMap::with_capacity_and_hasher(
+                (keys / 8).min(1 << 16) + 16,
+                Default::default(),
+            ),
+            levels: Vec::new(),
             len: 0,
         }
+    }
+
+    /// The dense array of level `k` and the index of `block` in it, if it has one.
+    #[inline]
+    fn dense_slot(&self, block: Key) -> Option<(&DenseLevel, usize)> {
+        let d = self.levels.get(block.k as usize)?.dense.as_ref()?;
+        Some((d, d.index(block.i, block.j)?))
+    }
+
+    /// The word of `block`, created empty if missing.
+    fn word_mut(&mut self, block: Key) -> &mut u64 {
+        if let Some(x) = self.dense_slot(block).map(|(_, x)| x) {
+            let d = self.levels[block.k as usize].dense.as_mut();
+            return &mut d.expect("a dense level").words[x];
+        }
+        let k = block.k as usize;
+        if self.levels.len() <= k {
+            self.levels.resize_with(k + 1, Level::default);
+        }
+        match self.sparse.entry(block) {
+            std::collections::hash_map::Entry::Occupied(e) => e.into_mut(),
+            std::collections::hash_map::Entry::Vacant(e) => {
+                self.levels[k].sparse_blocks += 1;
+                e.insert(0)
+            }
+        }
+    }
+
+    /// Moves level `k` into an array once its blocks in the table would fill a 32nd of it.
+    fn maybe_densify(&mut self, k: u8) {
+        let Some(level) = self.levels.get(k as usize) else {
+            return;
+        };
+        if level.dense.is_some() || level.sparse_blocks < 8 {
+            return;
+        }
+        let Some((_, _, ti, tj)) = DenseLevel::shape(k) else {
+            return;
+        };
+        if (level.sparse_blocks as i64) * 32 < ti * tj * 64 {
+            return;
+        }
+        let mut dense = DenseLevel::new(k).expect("the shape fits");
+        let mut moved = 0;
+        self.sparse.retain(|b, &mut w| {
+            let x = if b.k == k {
+                dense.index(b.i, b.j)
+            } else {
+                None
+            };
+            match x {
+                Some(x) => {
+                    dense.words[x] = w;
+                    moved += 1;
+                    false
+                }
+                None => true,
+            }
+        });
+        let level = &mut self.levels[k as usize];
+        level.sparse_blocks -= moved;
+        level.dense = Some(dense);
     }
 
     /// The cell of bit `n` of block `block` (the inverse of `slot`).
@@ -345,30 +503,41 @@ impl KeySet {
 
     pub fn contains(&self, key: &Key) -> bool {
         let (block, bit) = KeySet::slot(*key);
-        self.blocks.get(&block).is_some_and(|&w| w & bit != 0)
+        self.word(block) & bit != 0
     }
 
     /// Adds `key`; true when it was not there.
     pub fn insert(&mut self, key: Key) -> bool {
         let (block, bit) = KeySet::slot(key);
-        let w = self.blocks.entry(block).or_insert(0);
+        let w = self.word_mut(block);
         let new = *w & bit == 0;
         *w |= bit;
         self.len += new as usize;
+        self.maybe_densify(key.k);
         new
     }
 
     /// Removes `key`; true when it was there.
     pub fn remove(&mut self, key: &Key) -> bool {
         let (block, bit) = KeySet::slot(*key);
-        let Some(w) = self.blocks.get_mut(&block) else {
-            return false;
+        let had = if let Some(x) = self.dense_slot(block).map(|(_, x)| x) {
+            let d = self.levels[block.k as usize].dense.as_mut();
+            let w = &mut d.expect("a dense level").words[x];
+            let had = *w & bit != 0;
+            *w &= !bit;
+            had
+        } else {
+            let Some(w) = self.sparse.get_mut(&block) else {
+                return false;
+            };
+            let had = *w & bit != 0;
+            *w &= !bit;
+            if *w == 0 {
+                self.sparse.remove(&block);
+                self.levels[block.k as usize].sparse_blocks -= 1;
+            }
+            had
         };
-        let had = *w & bit != 0;
-        *w &= !bit;
-        if *w == 0 {
-            self.blocks.remove(&block);
-        }
         self.len -= had as usize;
         had
     }
@@ -393,28 +562,42 @@ impl KeySet {
             return mask;
         }
         // Up to four blocks, each looked up once.
+        const SEVEN: [(i64, i64); 7] =
+            [DIRS[0], DIRS[1], DIRS[2], DIRS[3], DIRS[4], DIRS[5], (0, 0)];
+        self.mask_at(key, &SEVEN) as u8
+    }
+
+    /// Which of the cells `key + offsets[n]` (same level) are in the set, as bit n. The
+    /// offsets must lie within 8 cells of `key` along each axis (at most four blocks, each
+    /// looked up once).
+    pub fn mask_at(&self, key: Key, offsets: &[(i64, i64)]) -> u32 {
         let mut seen: [(i64, i64, u64); 4] = [(0, 0, 0); 4];
         let mut n_seen = 0;
-        let mut mask = 0u8;
-        for (d, (di, dj)) in DIRS.iter().copied().chain([(0, 0)]).enumerate() {
+        let mut mask = 0u32;
+        for (n, &(di, dj)) in offsets.iter().enumerate() {
             let (i, j) = (key.i + di, key.j + dj);
             let (bi, bj) = (i >> 3, j >> 3);
             let w = match seen[..n_seen].iter().find(|e| e.0 == bi && e.1 == bj) {
                 Some(e) => e.2,
                 None => {
                     let w = self.word(Key::new(key.k, bi, bj));
-                    seen[n_seen] = (bi, bj, w);
+                    debug_assert!(n_seen < 4, "offsets beyond one block of {key:?}");
+                    seen[n_seen.min(3)] = (bi, bj, w);
                     n_seen += 1;
                     w
                 }
             };
-            mask |= (((w >> (((i & 7) << 3) | (j & 7))) & 1) as u8) << d;
+            mask |= (((w >> (((i & 7) << 3) | (j & 7))) & 1) as u32) << n;
         }
         mask
     }
 
+    #[inline]
     fn word(&self, block: Key) -> u64 {
-        self.blocks.get(&block).copied().unwrap_or(0)
+        if let Some((d, x)) = self.dense_slot(block) {
+            return d.words[x];
+        }
+        self.sparse.get(&block).copied().unwrap_or(0)
     }
 
     /// For the 8 × 8 block `block` (a key whose i and j are block coordinates, `i >> 3` and
@@ -439,7 +622,16 @@ impl KeySet {
     /// The occupied blocks with their words (bit `(i & 7) << 3 | (j & 7)` of block
     /// `(k, i >> 3, j >> 3)`), in no particular order.
     pub fn blocks(&self) -> impl Iterator<Item = (Key, u64)> + '_ {
-        self.blocks.iter().map(|(b, &w)| (*b, w))
+        let dense = self.levels.iter().enumerate().flat_map(|(k, level)| {
+            level.dense.iter().flat_map(move |d| {
+                d.words
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, &w)| w != 0)
+                    .map(move |(x, &w)| (d.block(k as u8, x), w))
+            })
+        });
+        dense.chain(self.sparse.iter().map(|(b, &w)| (*b, w)))
     }
 
     /// Adds every cell within lattice distance `radius` of `c` (at its level), one table
@@ -467,10 +659,12 @@ impl KeySet {
             }
         }
         for (bi, bj, bits) in acc {
-            let w = self.blocks.entry(Key::new(c.k, bi, bj)).or_insert(0);
-            self.len += (bits & !*w).count_ones() as usize;
+            let w = self.word_mut(Key::new(c.k, bi, bj));
+            let new = (bits & !*w).count_ones() as usize;
             *w |= bits;
+            self.len += new;
         }
+        self.maybe_densify(c.k);
     }
 
     pub fn len(&self) -> usize {
@@ -483,10 +677,10 @@ impl KeySet {
 
     /// The keys, in no particular order.
     pub fn iter(&self) -> impl Iterator<Item = Key> + '_ {
-        self.blocks.iter().flat_map(|(b, &w)| {
+        self.blocks().flat_map(|(b, w)| {
             (0..64)
                 .filter(move |n| w & (1u64 << n) != 0)
-                .map(move |n| KeySet::cell_in_block(*b, n))
+                .map(move |n| KeySet::cell_in_block(b, n))
         })
     }
 }
@@ -664,6 +858,60 @@ mod tests {
         let mut listed: Vec<Key> = set.iter().collect();
         listed.sort();
         assert_eq!(listed, reference.into_iter().collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn a_key_set_answers_the_same_before_and_after_a_level_turns_dense() {
+        // Level 6: the array covers |i| <= 43 + 16, |j| <= 53 + 16 (with the margin); keys far
+        // beyond it stay in the table of the dense level.
+        let k = 6u8;
+        let (_, _, ti, tj) = DenseLevel::shape(k).expect("level 6 has an array");
+        let mut set = KeySet::default();
+        let mut reference = std::collections::BTreeSet::new();
+        let mut x: u64 = 0x0123_4567_89ab_cdef;
+        let mut was_dense = false;
+        for step in 0..6000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let far = if step % 50 == 0 { 1000 } else { 0 };
+            let key = Key::new(
+                k - (step % 7 == 0) as u8,
+                (x >> 8) as i64 % 70 - 35 + far,
+                (x >> 24) as i64 % 90 - 45 - far,
+            );
+            if step % 4 == 3 {
+                assert_eq!(set.remove(&key), reference.remove(&key), "{key:?}");
+            } else {
+                assert_eq!(set.insert(key), reference.insert(key), "{key:?}");
+            }
+            assert_eq!(set.len(), reference.len());
+            was_dense |= set
+                .levels
+                .get(k as usize)
+                .is_some_and(|l| l.dense.is_some());
+        }
+        assert!(
+            was_dense,
+            "level {k} never turned dense ({ti} x {tj} tiles)"
+        );
+        for key in reference
+            .iter()
+            .chain([Key::new(k, 1000, -1000), Key::new(k, -60, 70)].iter())
+        {
+            assert_eq!(set.contains(key), reference.contains(key), "{key:?}");
+        }
+        for i in -40..40 {
+            for j in -50..50 {
+                let key = Key::new(k, i, j);
+                assert_eq!(set.contains(&key), reference.contains(&key), "{key:?}");
+            }
+        }
+        let mut listed: Vec<Key> = set.iter().collect();
+        listed.sort();
+        assert_eq!(listed, reference.iter().copied().collect::<Vec<_>>());
+        let words: u32 = set.blocks().map(|(_, w)| w.count_ones()).sum();
+        assert_eq!(words as usize, reference.len());
     }
 
     #[test]

@@ -331,7 +331,9 @@ impl Rings {
                         continue;
                     }
                     let o = Key::new(cell.k, cell.i - di, cell.j - dj);
-                    if self.occupied.contains_key(&o) {
+                    // `marked` holds every key `occupied` ever held: most cells around a
+                    // change are ruled out by a word just read instead of a table probe.
+                    if self.marked.contains(&o) && self.occupied.contains_key(&o) {
                         claimants.push((o, d));
                     }
                 }

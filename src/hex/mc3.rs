@@ -67,7 +67,7 @@
 
 use crate::geom::Point;
 use crate::hex::classify::{classify, Class, Rings};
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, DIRS};
 use crate::hex::refine::is_fin;
 use crate::hex::subdivision::Hierarchy;
 
@@ -124,10 +124,33 @@ fn is_mc3_below(h: &Hierarchy, r: &Rings, key: Key, top: Key) -> bool {
 /// The directions j around `top` in which `top + e_j` is a MOVED_CENTER_3 hexagon whose top
 /// neighbour is `top`, as a bit mask.
 pub fn mc3_below(h: &Hierarchy, r: &Rings, top: Key) -> u8 {
-    // The middle fin of a MOVED_CENTER_3 hexagon below `top` points away from it: one lookup
-    // rules out most neighbours before they are classified.
+    // The middle fin of a MOVED_CENTER_3 hexagon below `top` points away from it, which
+    // rules out most neighbours before they are classified. The edge child between n = top +
+    // e_j and n + e_j is a fin of n (`refine::is_fin`) exactly when both lie inside the
+    // bounding hexagon and one of them is subdivided: the twelve cells come from the few
+    // blocks around `top` instead of a parent lookup per cell.
+    const NEAR_AND_FAR: [(i64, i64); 12] = {
+        let mut out = [(0, 0); 12];
+        let mut d = 0;
+        while d < 6 {
+            out[d] = DIRS[d];
+            out[d + 6] = (2 * DIRS[d].0, 2 * DIRS[d].1);
+            d += 1;
+        }
+        out
+    };
+    let s = h.subdivided_at(top, &NEAR_AND_FAR);
+    let one_subdivided = (s ^ (s >> 6)) & 0x3f;
+    let fin = |j: usize| {
+        let n = top.neighbor(j);
+        one_subdivided & (1 << j) != 0 && n.inside() && n.neighbor(j).inside()
+    };
+    debug_assert!((0..6).all(|j| fin(j) == is_fin(h, top.neighbor(j).edge_child(j))));
+    if one_subdivided == 0 {
+        return 0;
+    }
     (0..6)
-        .filter(|&j| is_fin(h, top.neighbor(j).edge_child(j)))
+        .filter(|&j| fin(j))
         .filter(|&j| is_mc3_below(h, r, top.neighbor(j), top))
         .fold(0u8, |m, j| m | (1 << j))
 }

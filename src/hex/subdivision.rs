@@ -52,6 +52,10 @@ pub struct Hierarchy {
     subdivided: KeySet,
     /// Input points per leaf (full unsubdivided hexagon or semi-hexagon); only occupied leaves.
     occupants: FxHashMap<Key, Vec<u32>>,
+    /// The keys of `occupants`, as a block set: the rules ask whether a cell is occupied for
+    /// every cell around each subdivision, and most are not, which a block set answers
+    /// from the words it has just read where the table of lists misses the cache.
+    occupied: KeySet,
     /// Cells whose rules must be re-examined.
     pub(crate) work: Vec<Key>,
     /// Hexagons subdivided since the log was last cleared (the extended rules re-examine the
@@ -82,8 +86,10 @@ impl Hierarchy {
     pub fn new(lattice: Lattice, points: Vec<Point>, budget: Budget) -> Hierarchy {
         let mut occupants =
             FxHashMap::with_capacity_and_hasher(points.len() + 1, Default::default());
+        let mut occupied = KeySet::default();
         if !points.is_empty() {
             occupants.insert(Key::ROOT, (0..points.len() as u32).collect());
+            occupied.insert(Key::ROOT);
         }
         // About seven subdivisions per point on uniform sets: reserving spares the rehashing of
         // tables that outgrow the caches.
@@ -98,6 +104,7 @@ impl Hierarchy {
             points,
             subdivided: KeySet::with_capacity(expected),
             occupants,
+            occupied,
             work: Vec::new(),
             log: Vec::new(),
             steps: 0,
@@ -122,6 +129,12 @@ impl Hierarchy {
     pub fn subdivided_neighbourhood(&self, key: Key) -> (bool, u8) {
         let m = self.subdivided.neighbourhood(key);
         (m & 0x40 != 0, m & 0x3f)
+    }
+
+    /// Which of the cells `key + offsets[n]` are subdivided, as bit n (`KeySet::mask_at`: the
+    /// offsets stay within 8 cells of `key` along each axis).
+    pub fn subdivided_at(&self, key: Key, offsets: &[(i64, i64)]) -> u32 {
+        self.subdivided.mask_at(key, offsets)
     }
 
     /// For the 8 × 8 block of cells `block` (`KeySet` layout): which of them are subdivided,
@@ -156,7 +169,7 @@ impl Hierarchy {
     }
 
     pub fn is_occupied(&self, key: Key) -> bool {
-        self.occupants.contains_key(&key)
+        self.occupied.contains(&key)
     }
 
     /// Appends point `p` to the input points and assigns it to `leaf` (which must be the leaf
@@ -165,6 +178,7 @@ impl Hierarchy {
         let id = self.points.len() as u32;
         self.points.push(p);
         self.occupants.entry(leaf).or_default().push(id);
+        self.occupied.insert(leaf);
         if let Some(log) = &mut self.occupancy_changes {
             log.push(leaf);
         }
@@ -281,9 +295,11 @@ impl Hierarchy {
             }
         }
         if let Some(pts) = self.occupants.remove(&key) {
+            self.occupied.remove(&key);
             for p in pts {
                 let child = self.locate_child(key, self.points[p as usize]);
                 self.occupants.entry(child).or_default().push(p);
+                self.occupied.insert(child);
                 if let Some(log) = &mut self.occupancy_changes {
                     log.push(child);
                 }
@@ -460,29 +476,30 @@ impl Hierarchy {
     /// the subdivided set): for callers whose result does not depend on it.
     pub fn full_leaves_unordered(&self) -> Vec<Key> {
         let mut out = Vec::with_capacity(self.full_leaves + 1);
-        for key in self.subdivided.iter() {
+        out.extend(self.full_leaves_iter());
+        out
+    }
+
+    /// The keys of `full_leaves_unordered`, one at a time (no list of them all).
+    pub fn full_leaves_iter(&self) -> impl Iterator<Item = Key> + '_ {
+        let children = self.subdivided.iter().flat_map(move |key| {
             let c = key.central_child();
-            if !self.subdivided.contains(&c) {
-                out.push(c);
-            }
-            for d in 0..6 {
+            let central = (!self.subdivided.contains(&c)).then_some(c);
+            let edges = (0..6).filter_map(move |d| {
                 let e = key.edge_child(d);
                 if !e.inside() {
-                    continue;
+                    return None;
                 }
                 let n = key.neighbor(d);
-                if self.is_subdivided_or_outside(n)
+                (self.is_subdivided_or_outside(n)
                     && (!n.inside() || key.packed() < n.packed())
-                    && !self.subdivided.contains(&e)
-                {
-                    out.push(e);
-                }
-            }
-        }
-        if !self.subdivided.contains(&Key::ROOT) {
-            out.push(Key::ROOT);
-        }
-        out
+                    && !self.subdivided.contains(&e))
+                .then_some(e)
+            });
+            central.into_iter().chain(edges)
+        });
+        let root = (!self.subdivided.contains(&Key::ROOT)).then_some(Key::ROOT);
+        children.chain(root)
     }
 
     /// Every leaf inside the root: full unsubdivided hexagons and semi-hexagons, sorted.

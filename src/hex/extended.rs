@@ -298,7 +298,7 @@ fn refine_and_verify(
     // The extended rules act on full leaves only, and `extended_actions` sorts what it finds,
     // so the full leaves as a block set do (not every leaf with its cell, sorted: at plane-1m
     // about 5 GB built and sorted once).
-    let candidates: KeySet = h.full_leaves_unordered().into_iter().collect();
+    let candidates: KeySet = h.full_leaves_iter().collect();
     match extend_and_verify(h, stats, state, candidates, None)? {
         Some(mesh) => Ok(mesh),
         None => Ok(final_dual(h, state)),
@@ -1870,41 +1870,52 @@ fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTrian
 /// Pairs of triangles sharing an edge where the opposite vertex of one lies strictly inside
 /// the circumcircle of the other (exact `incircle`).
 pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
-    // The edges bucketed by their smaller vertex (a counting sort), so that the two triangles
-    // of an edge meet in one short bucket. Either of them may come first: the exact test is
-    // symmetric (the opposite vertex of one lies strictly inside the other's circumcircle
-    // exactly when the reverse holds), and the pairs are only collected.
+    // The triangles around each vertex (a counting sort), so that the other triangle of an
+    // edge is found among the few around one of its ends: 12 bytes a triangle, where a list
+    // of the edges with their triangles and opposite vertices took 36 (4 GB at plane-1m,
+    // touched afresh at every complete check). Each pair of triangles sharing an edge is
+    // tested once, from the smaller index; the exact test is symmetric (the opposite vertex of
+    // one lies strictly inside the other's circumcircle exactly when the reverse holds).
     let n = mesh.vertices.len();
-    let mut start = vec![0u32; n + 1];
+    // Counted one slot ahead, so that after the sums start[v + 1] is where v's triangles
+    // begin, and after the fill where they end.
+    let mut start = vec![0u32; n + 2];
     for tri in &mesh.triangles {
-        for e in 0..3 {
-            start[tri[e].min(tri[(e + 1) % 3]) as usize + 1] += 1;
+        for &v in tri {
+            start[v as usize + 2] += 1;
         }
     }
     for v in 0..n {
-        start[v + 1] += start[v];
+        start[v + 2] += start[v + 1];
     }
-    let mut fill = start.clone();
-    // (larger vertex, triangle, opposite vertex) per edge.
-    let mut slots = vec![(0u32, 0u32, 0u32); 3 * mesh.triangles.len()];
+    let mut star = vec![0u32; 3 * mesh.triangles.len()];
     for (t, tri) in mesh.triangles.iter().enumerate() {
-        for e in 0..3 {
-            let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            let at = &mut fill[a.min(b) as usize];
-            slots[*at as usize] = (a.max(b), t as u32, tri[(e + 2) % 3]);
+        for &v in tri {
+            let at = &mut start[v as usize + 1];
+            star[*at as usize] = t as u32;
             *at += 1;
         }
     }
+    // Now v's triangles are star[start[v]..start[v + 1]].
+    let around = |v: u32| &star[start[v as usize] as usize..start[v as usize + 1] as usize];
     let mut out = Vec::new();
-    for v in 0..n {
-        let bucket = &slots[start[v] as usize..start[v + 1] as usize];
-        for (x, &(b, t, _)) in bucket.iter().enumerate() {
-            for &(b2, u, opp) in &bucket[x + 1..] {
-                if b2 == b {
-                    let [p, q, r] = mesh.corners(t as usize);
-                    if incircle(p, q, r, mesh.vertices[opp as usize]) > 0.0 {
-                        out.push((t as usize, u as usize));
-                    }
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        for e in 0..3 {
+            let (a, b) = (tri[e], tri[(e + 1) % 3]);
+            for &u in around(a.min(b)) {
+                if u as usize <= t {
+                    continue;
+                }
+                let other = mesh.triangles[u as usize];
+                if !other.contains(&a.max(b)) {
+                    continue;
+                }
+                let Some(&opp) = other.iter().find(|&&w| w != a && w != b) else {
+                    continue;
+                };
+                let [p, q, r] = mesh.corners(t);
+                if incircle(p, q, r, mesh.vertices[opp as usize]) > 0.0 {
+                    out.push((t, u as usize));
                 }
             }
         }
@@ -1915,6 +1926,55 @@ pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn delaunay_violations_are_the_pairs_a_test_of_every_two_triangles_finds() {
+        // A row of rhombi (0,0) (2,-h) (4,0) (2,h), each split along its long diagonal (not
+        // Delaunay when h < 2) or its short one, with fans of triangles between them so that
+        // vertices have several triangles around them; every triangle counter-clockwise.
+        let mut vertices: Vec<Point> = Vec::new();
+        let mut triangles: Vec<[u32; 3]> = Vec::new();
+        for r in 0..12u32 {
+            let x = 5.0 * r as f64;
+            let h = [0.5, 1.5, 2.5][r as usize % 3];
+            let base = vertices.len() as u32;
+            vertices.extend([[x, 0.0], [x + 2.0, -h], [x + 4.0, 0.0], [x + 2.0, h]]);
+            let [a, b, c, d] = [base, base + 1, base + 2, base + 3];
+            if r % 2 == 0 {
+                triangles.extend([[a, b, c], [a, c, d]]);
+            } else {
+                triangles.extend([[a, b, d], [b, c, d]]);
+            }
+            if r > 0 {
+                // The previous rhombus's right corner, top and bottom joined to this one.
+                let (pb, pc, pd) = (base - 3, base - 2, base - 1);
+                triangles.extend([[pc, b, a], [pc, a, d], [pb, b, pc], [pd, pc, d]]);
+            }
+        }
+        let mesh = TriMesh {
+            vertices,
+            triangles,
+        };
+        let mut found = delaunay_violations(&mesh);
+        found.sort_unstable();
+        let mut want = Vec::new();
+        for t in 0..mesh.triangles.len() {
+            for u in t + 1..mesh.triangles.len() {
+                let (x, y) = (mesh.triangles[t], mesh.triangles[u]);
+                let shared = x.iter().filter(|v| y.contains(v)).count();
+                if shared != 2 {
+                    continue;
+                }
+                let opp = *y.iter().find(|v| !x.contains(v)).expect("a third vertex");
+                let [p, q, r] = mesh.corners(t);
+                if incircle(p, q, r, mesh.vertices[opp as usize]) > 0.0 {
+                    want.push((t, u));
+                }
+            }
+        }
+        assert!(!want.is_empty(), "the fixture has non-Delaunay pairs");
+        assert_eq!(found, want);
+    }
 
     /// The finished `hex` dual of plane-100 with its vertex keys, the hierarchy, and an
     /// interior vertex far from the bounding hexagon with its region (reach 2).

@@ -4,9 +4,14 @@
 //!
 //! The extended mesher `hex` runs on the paper's own plane-1k and plane-2k (Table 1: 30.4 s and
 //! 123 s) and on plane-10k and plane-100k, with the output triangles as the throughput, so that
-//! criterion prints the time per output triangle: flat when the work is O(output).
+//! criterion prints the time per output triangle: flat when the work is O(output). plane-1m
+//! (114 million triangles, several minutes and about 14 GB a run) joins them when the
+//! environment sets `HEXMESH_BENCH_1M=1`: criterion's ten samples and a warm-up run then take
+//! about an hour, so a plain `cargo bench` leaves it out.
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use criterion::{
+    criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,
+};
 use hexmesh::hex::extended::Hex;
 use hexmesh::hex::HexSimple;
 use hexmesh::{Mesher, Params, Point, Pslg};
@@ -40,7 +45,15 @@ fn bench_hex(c: &mut Criterion) {
 fn bench_hex_extended(c: &mut Criterion) {
     let mut group = c.benchmark_group("hex");
     group.sample_size(10);
-    for name in ["plane-1k", "plane-2k", "plane-10k", "plane-100k"] {
+    let mut names = vec!["plane-1k", "plane-2k", "plane-10k", "plane-100k"];
+    if std::env::var("HEXMESH_BENCH_1M").is_ok_and(|v| v == "1") {
+        names.push("plane-1m");
+    }
+    for name in names {
+        if name == "plane-1m" {
+            // One run a sample: the default linear sampling would ask for 55 runs.
+            group.sampling_mode(SamplingMode::Flat);
+        }
         let input = hexmesh::datasets::by_name(name).expect("a dataset");
         let triangles = Hex
             .mesh(&input, &Params::default())

@@ -338,11 +338,10 @@ struct Level {
 
 /// The words of one level as an array over the blocks of a rectangle of lattice coordinates
 /// that holds the bounding hexagon (with a margin): a look-up is an index computation and
-/// one read instead of a hash, a probe and a key comparison. A level turns dense once its
-/// blocks would fill a 32nd of the array (8 bytes a word against about 38 a block in the
-/// table, so at most about seven times the table's room when it switches; levels filled
-/// less stay in the table). Measured here: an eighth left the hierarchy's busiest levels in
-/// the table on plane-1k, whose lookups then cost more than before.
+/// one read instead of a hash, a probe and a key comparison. A level turns dense once it has
+/// `MIN_BLOCKS` blocks and they would fill a 64th of the array (8 bytes a word against about
+/// 38 a block in the table, so at most about 14 times the table's room when it switches).
+/// Measured here: with an eighth, plane-1m's level 14 stayed in the table.
 /// The array is laid out in tiles of 8 × 8 blocks (64 × 64 cells, 512 bytes), so that cells
 /// near each other in the plane are near each other in memory.
 #[derive(Debug, Clone)]
@@ -362,6 +361,10 @@ impl DenseLevel {
     const MARGIN: i64 = 16;
     /// Levels whose array would be larger than this many words stay in the table.
     const MAX_WORDS: i64 = 1 << 25;
+    /// Levels with fewer blocks stay in the table (about 300 KB at most, which stays in
+    /// cache), so that small sets (local checks, small inputs) do not allocate arrays of
+    /// megabytes for a few blocks.
+    const MIN_BLOCKS: usize = 8192;
 
     /// The rectangle of level `k`: the root is |i + 2j| ≤ 2^k, |3i| + |i + 2j| ≤ 2^(k+1)
     /// (`Key::inside`), so |i| ≤ 2^(k+1)/3 and |j| ≤ (2^k + |i|)/2 ≤ 5/6·2^k.
@@ -454,18 +457,19 @@ impl KeySet {
         }
     }
 
-    /// Moves level `k` into an array once its blocks in the table would fill a 32nd of it.
+    /// Moves level `k` into an array once it has `DenseLevel::MIN_BLOCKS` blocks in the table
+    /// and they would fill a 64th of it.
     fn maybe_densify(&mut self, k: u8) {
         let Some(level) = self.levels.get(k as usize) else {
             return;
         };
-        if level.dense.is_some() || level.sparse_blocks < 8 {
+        if level.dense.is_some() || level.sparse_blocks < DenseLevel::MIN_BLOCKS {
             return;
         }
         let Some((_, _, ti, tj)) = DenseLevel::shape(k) else {
             return;
         };
-        if (level.sparse_blocks as i64) * 32 < ti * tj * 64 {
+        if (level.sparse_blocks as i64) * 64 < ti * tj * 64 {
             return;
         }
         let mut dense = DenseLevel::new(k).expect("the shape fits");
@@ -862,47 +866,54 @@ mod tests {
 
     #[test]
     fn a_key_set_answers_the_same_before_and_after_a_level_turns_dense() {
-        // Level 6: the array covers |i| <= 43 + 16, |j| <= 53 + 16 (with the margin); keys far
-        // beyond it stay in the table of the dense level.
-        let k = 6u8;
-        let (_, _, ti, tj) = DenseLevel::shape(k).expect("level 6 has an array");
+        // Level 10: the array covers |i| <= 683 + 16 and |j| <= 853 + 16 (with the margin).
+        // One key in each of 91 x 91 blocks turns it dense part way; random keys (some far
+        // beyond the array, which stay in the table) are inserted and removed around them.
+        let k = 10u8;
         let mut set = KeySet::default();
         let mut reference = std::collections::BTreeSet::new();
         let mut x: u64 = 0x0123_4567_89ab_cdef;
-        let mut was_dense = false;
-        for step in 0..6000 {
+        let mut next = || {
             x ^= x << 13;
             x ^= x >> 7;
             x ^= x << 17;
-            let far = if step % 50 == 0 { 1000 } else { 0 };
-            let key = Key::new(
-                k - (step % 7 == 0) as u8,
-                (x >> 8) as i64 % 70 - 35 + far,
-                (x >> 24) as i64 % 90 - 45 - far,
-            );
-            if step % 4 == 3 {
-                assert_eq!(set.remove(&key), reference.remove(&key), "{key:?}");
-            } else {
+            x
+        };
+        let mut was_dense = false;
+        let mut step = 0;
+        for bi in -45..46i64 {
+            for bj in -45..46i64 {
+                let r = next();
+                let key = Key::new(k, 8 * bi + (r % 8) as i64, 8 * bj + (r >> 8) as i64 % 8);
                 assert_eq!(set.insert(key), reference.insert(key), "{key:?}");
+                for _ in 0..2 {
+                    step += 1;
+                    let r = next();
+                    let far = if step % 50 == 0 { 5000 } else { 0 };
+                    let key = Key::new(
+                        k - (step % 7 == 0) as u8,
+                        (r >> 8) as i64 % 800 - 400 + far,
+                        (r >> 24) as i64 % 800 - 400 - far,
+                    );
+                    if step % 3 == 2 {
+                        assert_eq!(set.remove(&key), reference.remove(&key), "{key:?}");
+                    } else {
+                        assert_eq!(set.insert(key), reference.insert(key), "{key:?}");
+                    }
+                }
+                assert_eq!(set.len(), reference.len());
+                was_dense |= set
+                    .levels
+                    .get(k as usize)
+                    .is_some_and(|l| l.dense.is_some());
             }
-            assert_eq!(set.len(), reference.len());
-            was_dense |= set
-                .levels
-                .get(k as usize)
-                .is_some_and(|l| l.dense.is_some());
         }
-        assert!(
-            was_dense,
-            "level {k} never turned dense ({ti} x {tj} tiles)"
-        );
-        for key in reference
-            .iter()
-            .chain([Key::new(k, 1000, -1000), Key::new(k, -60, 70)].iter())
-        {
-            assert_eq!(set.contains(key), reference.contains(key), "{key:?}");
+        assert!(was_dense, "level {k} never turned dense");
+        for key in reference.iter() {
+            assert!(set.contains(key), "{key:?}");
         }
-        for i in -40..40 {
-            for j in -50..50 {
+        for i in -380..380 {
+            for j in (-380..380).step_by(7) {
                 let key = Key::new(k, i, j);
                 assert_eq!(set.contains(&key), reference.contains(&key), "{key:?}");
             }
@@ -910,8 +921,12 @@ mod tests {
         let mut listed: Vec<Key> = set.iter().collect();
         listed.sort();
         assert_eq!(listed, reference.iter().copied().collect::<Vec<_>>());
-        let words: u32 = set.blocks().map(|(_, w)| w.count_ones()).sum();
-        assert_eq!(words as usize, reference.len());
+        let bits: u32 = set.blocks().map(|(_, w)| w.count_ones()).sum();
+        assert_eq!(bits as usize, reference.len());
+        for key in reference.clone() {
+            assert!(set.remove(&key));
+        }
+        assert!(set.is_empty() && set.iter().next().is_none());
     }
 
     #[test]

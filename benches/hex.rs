@@ -18,6 +18,10 @@ use hexmesh::{Mesher, Params, Point, Pslg};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
 
+// The `hexmesh` command's allocator, set up as it sets it, so that these times are its.
+#[global_allocator]
+static ALLOCATOR: hexmesh::Allocator = hexmesh::Allocator;
+
 fn plane(n: usize) -> Pslg {
     let mut rng = Pcg64::seed_from_u64(0x0070_6c61_6e65 + n as u64);
     let pts: Vec<Point> = (0..n)
@@ -27,6 +31,7 @@ fn plane(n: usize) -> Pslg {
 }
 
 fn bench_hex(c: &mut Criterion) {
+    hexmesh::configure_allocator();
     let mut group = c.benchmark_group("hex-simple");
     group.sample_size(10);
     for n in [1_000usize, 10_000, 100_000] {
@@ -43,6 +48,7 @@ fn bench_hex(c: &mut Criterion) {
 }
 
 fn bench_hex_extended(c: &mut Criterion) {
+    hexmesh::configure_allocator();
     let mut group = c.benchmark_group("hex");
     group.sample_size(10);
     let mut names = vec!["plane-1k", "plane-2k", "plane-10k", "plane-100k"];

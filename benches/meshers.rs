@@ -12,6 +12,10 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use hexmesh::report::case_params;
 use hexmesh::{datasets, registry, Pslg};
 
+// The `hexmesh` command's allocator, set up as it sets it, so that these times are its.
+#[global_allocator]
+static ALLOCATOR: hexmesh::Allocator = hexmesh::Allocator;
+
 /// Families and their members, smallest first; plane-2k and the scaling series are left to
 /// `hexmesh report --scaling`, since one hexagon mesh of them takes seconds.
 const FAMILIES: &[(&str, &[&str])] = &[
@@ -22,6 +26,7 @@ const FAMILIES: &[(&str, &[&str])] = &[
 ];
 
 fn meshers(c: &mut Criterion) {
+    hexmesh::configure_allocator();
     let inputs: Vec<(&str, Vec<(&str, Pslg)>)> = FAMILIES
         .iter()
         .map(|(family, names)| {

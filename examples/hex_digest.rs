@@ -7,6 +7,10 @@ use std::hash::{Hash, Hasher};
 use hexmesh::hex::extended::Hex;
 use hexmesh::{Mesher, Params, Pslg};
 
+// The `hexmesh` command's allocator, set up as it sets it: the digests are its output's.
+#[global_allocator]
+static ALLOCATOR: hexmesh::Allocator = hexmesh::Allocator;
+
 fn digest(input: &Pslg) -> String {
     match Hex.mesh(input, &Params::default()) {
         Ok(run) => {
@@ -23,6 +27,7 @@ fn digest(input: &Pslg) -> String {
 }
 
 fn main() {
+    hexmesh::configure_allocator();
     let cases: u64 = std::env::args()
         .nth(1)
         .and_then(|s| s.parse().ok())

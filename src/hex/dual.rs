@@ -144,8 +144,16 @@ fn extract_all_from(
     let items = expand(h, root_triangles(h), PARALLEL_SUBTREES);
     let parts = {
         let base = &b;
+        // Each part's share of the full leaves, if the subtrees share them evenly, with room
+        // for an uneven split: reserved but untouched room costs no memory.
+        let share = |chunk: usize| (h.full_leaves * chunk).div_ceil(items.len().max(1)) * 5 / 4;
         crate::hex::extended::in_parallel_from(&items, 2, |chunk| {
-            let mut part = Part::default();
+            let leaves = share(chunk.len());
+            let mut part = Part {
+                index: KeyIndex::with_capacity(leaves),
+                vertices: Vec::with_capacity(leaves),
+                triangles: Vec::with_capacity(2 * leaves),
+            };
             for item in chunk {
                 match *item {
                     Item::Emit(tri) => part.emit(base, tri),
@@ -340,7 +348,11 @@ impl<'a> Builder<'a> {
         // small: its tables grow as needed.
         let expected = if whole { h.full_leaves } else { 0 } + h.points.len();
         let mut index = KeyIndex::with_capacity(expected);
-        let mut vertices = Vec::with_capacity(expected);
+        // The vectors get a quarter more: the dual has more vertices than full leaves
+        // (plane-100k: about a tenth more), and reserved room that is never written costs
+        // no memory.
+        let room = if whole { expected + expected / 4 } else { 0 };
+        let mut vertices = Vec::with_capacity(room);
         let lazy = placement == Placement::Relocated && !whole;
         if placement == Placement::Relocated && whole {
             vertices = h.points.clone();
@@ -353,8 +365,14 @@ impl<'a> Builder<'a> {
                 }
             }
         }
-        let used = vec![false; vertices.len()];
-        let mut keys = vec![Key::ROOT; vertices.len()];
+        // The points' copy replaced the reserved vector; every vector that grows by a vertex
+        // keeps the reservation, so that it is never copied into a doubled allocation (whose
+        // fresh pages the kernel must also clear).
+        vertices.reserve(room.saturating_sub(vertices.len()));
+        let mut used = Vec::with_capacity(room);
+        used.resize(vertices.len(), false);
+        let mut keys = Vec::with_capacity(room);
+        keys.resize(vertices.len(), Key::ROOT);
         for (key, v) in index.iter() {
             keys[v as usize] = key;
         }
@@ -378,7 +396,7 @@ impl<'a> Builder<'a> {
             keys,
             index,
             vertices,
-            triangles: Vec::with_capacity(if whole { 2 * expected } else { 0 }),
+            triangles: Vec::with_capacity(2 * room),
             used,
             points_met: lazy.then(Vec::new),
         }

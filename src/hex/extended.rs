@@ -384,22 +384,22 @@ pub(crate) fn splice(
     let part_in: Vec<bool> = part_keys.iter().map(inside).collect();
     let TriMesh {
         mut vertices,
-        triangles: old_triangles,
+        mut triangles,
     } = old;
-    let mut triangles = Vec::with_capacity(old_triangles.len());
-    // The vertices of the replaced triangles by key, and their directed edges.
+    // The vertices of the replaced triangles by key, and their directed edges. The kept
+    // triangles stay in the old array, in order (no second mesh-sized array).
     let mut seam: FxHashMap<Key, u32> = FxHashMap::default();
     let mut replaced: FxHashSet<(Key, Key)> = FxHashSet::default();
-    for t in old_triangles {
-        if t.iter().any(|&v| old_in[v as usize]) {
+    triangles.retain(|t| {
+        let gone = t.iter().any(|&v| old_in[v as usize]);
+        if gone {
             for e in 0..3 {
                 replaced.insert((old_keys[t[e] as usize], old_keys[t[(e + 1) % 3] as usize]));
                 seam.insert(old_keys[t[e] as usize], t[e]);
             }
-        } else {
-            triangles.push(t);
         }
-    }
+        !gone
+    });
     let added: Vec<[u32; 3]> = part
         .triangles
         .iter()
@@ -484,18 +484,24 @@ pub(crate) fn splice(
         });
     }
     let mut renumber = vec![u32::MAX; vertices.len()];
-    let mut kept = Vec::with_capacity(vertices.len());
-    for (v, p) in vertices.into_iter().enumerate() {
-        if used[v] {
-            renumber[v] = kept.len() as u32;
-            kept.push(p);
+    let mut next = 0;
+    for (v, &u) in used.iter().enumerate() {
+        if u {
+            renumber[v] = next;
+            next += 1;
         }
     }
+    // Compacted in place: `retain` visits the vertices in order.
+    let mut v = 0;
+    vertices.retain(|_| {
+        v += 1;
+        used[v - 1]
+    });
     for t in &mut triangles {
         *t = t.map(|v| renumber[v as usize]);
     }
     Some(TriMesh {
-        vertices: kept,
+        vertices,
         triangles,
     })
 }

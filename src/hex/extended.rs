@@ -483,19 +483,18 @@ pub(crate) fn splice(
             triangles,
         });
     }
+    // Compacted in place: `retain` visits the vertices in order, and a kept vertex's new
+    // number is the count kept before it.
     let mut renumber = vec![u32::MAX; vertices.len()];
-    let mut next = 0;
-    for (v, &u) in used.iter().enumerate() {
-        if u {
+    let (mut v, mut next) = (0, 0);
+    vertices.retain(|_| {
+        let keep = used[v];
+        if keep {
             renumber[v] = next;
             next += 1;
         }
-    }
-    // Compacted in place: `retain` visits the vertices in order.
-    let mut v = 0;
-    vertices.retain(|_| {
         v += 1;
-        used[v - 1]
+        keep
     });
     for t in &mut triangles {
         *t = t.map(|v| renumber[v as usize]);

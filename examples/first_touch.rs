@@ -13,13 +13,48 @@
 //! as phases give memory back and take it again), so their system time says as much about the
 //! machine as about the mesher; see METHODOLOGY.md.
 
+use std::process::ExitCode;
+use std::str::FromStr;
 use std::time::{Duration, Instant};
 
-fn main() {
-    let mut args = std::env::args().skip(1);
-    let mb: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(1024);
-    let pause: f64 = args.next().and_then(|s| s.parse().ok()).unwrap_or(5.0);
-    let rounds: usize = args.next().and_then(|s| s.parse().ok()).unwrap_or(3);
+/// Argument `n` (from 1) parsed as a `T` that `ok` accepts, or `default` when it is missing.
+fn arg<T: FromStr + Copy>(
+    args: &[String],
+    n: usize,
+    name: &str,
+    default: T,
+    ok: impl Fn(T) -> bool,
+) -> Result<T, String> {
+    match args.get(n) {
+        None => Ok(default),
+        Some(s) => match s.parse::<T>() {
+            Ok(v) if ok(v) => Ok(v),
+            _ => Err(format!("argument {n} ({name}): '{s}' is not accepted")),
+        },
+    }
+}
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().collect();
+    let parsed = (|| {
+        let mb = arg(&args, 1, "megabytes, 1 to 65536", 1024usize, |m| {
+            (1..=1 << 16).contains(&m)
+        })?;
+        let pause = arg(&args, 2, "pause in seconds, 0 to 3600", 5.0f64, |p| {
+            (0.0..=3600.0).contains(&p)
+        })?;
+        let rounds = arg(&args, 3, "rounds, 1 to 1000", 3usize, |r| {
+            (1..=1000).contains(&r)
+        })?;
+        Ok::<_, String>((mb, pause, rounds))
+    })();
+    let (mb, pause, rounds) = match parsed {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("first_touch: {e}\nusage: first_touch [MB] [pause seconds] [rounds]");
+            return ExitCode::from(2);
+        }
+    };
     let bytes = mb << 20;
     for round in 1..=rounds {
         let mut v = vec![0u8; bytes];
@@ -37,7 +72,8 @@ fn main() {
             bytes as f64 / 1e9 / s
         );
         if round < rounds {
-            std::thread::sleep(Duration::from_secs_f64(pause.max(0.0)));
+            std::thread::sleep(Duration::from_secs_f64(pause));
         }
     }
+    ExitCode::SUCCESS
 }

@@ -90,7 +90,7 @@ use crate::hex::classify::{
 };
 use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeySet};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyBytes, KeySet};
 use crate::hex::mc3::{self, Patch};
 use crate::hex::refine::{drain, refine_simple};
 use crate::hex::region::{full_leaves_in, Region, REACH};
@@ -1745,29 +1745,27 @@ struct SettlePass<'a> {
 /// check, on a small part of the dual, looks its vertices up in the rings (`Lookup`) instead
 /// of listing all of them each round. Of two contested cells with the same centre (at two
 /// levels) the finer one is taken, either way.
+/// A listed cell is kept as its level under the canonical key (the cell is the canonical
+/// key's central child that many levels down), in 8 × 8 blocks: every vertex of the complete
+/// dual is looked up, in the dual's order, and neighbouring vertices share a block.
 enum SettleCells {
-    Listed {
-        contested: FxHashMap<Key, Key>,
-        ring: FxHashMap<Key, Key>,
-    },
+    Listed { contested: KeyBytes, ring: KeyBytes },
     Lookup,
 }
 
 impl SettleCells {
     fn listed(h: &Hierarchy, r: &Rings) -> SettleCells {
-        let mut contested: FxHashMap<Key, Key> =
-            FxHashMap::with_capacity_and_hasher(r.contested.len(), Default::default());
+        let mut contested = KeyBytes::default();
         for &c in r.contested.keys() {
-            let e = contested.entry(c.canonical()).or_insert(c);
-            if c.k > e.k {
-                *e = c;
+            let k = c.canonical();
+            if contested.get(&k).is_none_or(|level| c.k > level) {
+                contested.insert(k, c.k);
             }
         }
         let mut ring = contested.clone();
-        ring.reserve(r.roles.len());
         for &c in r.roles.keys() {
             if h.is_full_leaf(c) {
-                ring.insert(c.canonical(), c);
+                ring.insert(c.canonical(), c.k);
             }
         }
         SettleCells::Listed { contested, ring }
@@ -1779,7 +1777,10 @@ impl SettleCells {
         match self {
             SettleCells::Listed { contested, ring } => {
                 let map = if with_neighbours { ring } else { contested };
-                map.get(&key).copied()
+                map.get(&key).map(|level| {
+                    let s = level - key.k;
+                    Key::new(level, key.i << s, key.j << s)
+                })
             }
             SettleCells::Lookup => {
                 // The cells with this centre: one per level from `key` down; a ring cell

@@ -795,8 +795,128 @@ impl KeyIndex {
     }
 }
 
+/// One cache line of `KeyBytes`: the bytes of an 8 × 8 block of cells.
+#[derive(Debug, Clone, Copy)]
+#[repr(align(64))]
+struct ByteBlock([u8; 64]);
+
+/// A map from keys to bytes kept as blocks of 8 × 8 cells of one level, one cache line each
+/// (as `KeyIndex`, with 64 cells a block): cells near each other in the plane share a line,
+/// so a search that walks the lattice, or look-ups made in the dual's order, land in a block
+/// just used instead of a random slot of a table with an entry of 32 bytes per cell.
+/// `KeyBytes::NONE` is not a value (it marks empty slots).
+#[derive(Debug, Clone, Default)]
+pub struct KeyBytes {
+    blocks: FxHashMap<Key, u32>,
+    lines: Vec<ByteBlock>,
+    len: usize,
+}
+
+impl KeyBytes {
+    pub const NONE: u8 = u8::MAX;
+
+    /// The block of `key` and its slot there (`>>` and `&` floor negative coordinates).
+    fn slot(key: Key) -> (Key, usize) {
+        let block = Key::new(key.k, key.i >> 3, key.j >> 3);
+        (block, (((key.i & 7) << 3) | (key.j & 7)) as usize)
+    }
+
+    pub fn get(&self, key: &Key) -> Option<u8> {
+        let (block, n) = KeyBytes::slot(*key);
+        let b = *self.blocks.get(&block)?;
+        let v = self.lines[b as usize].0[n];
+        (v != KeyBytes::NONE).then_some(v)
+    }
+
+    /// The slot of `key`, its block made when there is none yet.
+    fn slot_mut(&mut self, key: Key) -> &mut u8 {
+        let (block, n) = KeyBytes::slot(key);
+        let lines = &mut self.lines;
+        let b = *self.blocks.entry(block).or_insert_with(|| {
+            lines.push(ByteBlock([KeyBytes::NONE; 64]));
+            (lines.len() - 1) as u32
+        });
+        &mut self.lines[b as usize].0[n]
+    }
+
+    /// Sets `key` to `value` when it has no value yet; true when it had none.
+    pub fn insert_new(&mut self, key: Key, value: u8) -> bool {
+        debug_assert_ne!(value, KeyBytes::NONE);
+        let v = self.slot_mut(key);
+        let new = *v == KeyBytes::NONE;
+        if new {
+            *v = value;
+        }
+        self.len += new as usize;
+        new
+    }
+
+    /// Sets the value of `key`.
+    pub fn insert(&mut self, key: Key, value: u8) {
+        debug_assert_ne!(value, KeyBytes::NONE);
+        let v = self.slot_mut(key);
+        let new = *v == KeyBytes::NONE;
+        *v = value;
+        self.len += new as usize;
+    }
+
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Every key with its value, in no particular order.
+    pub fn iter(&self) -> impl Iterator<Item = (Key, u8)> + '_ {
+        self.blocks.iter().flat_map(move |(b, &at)| {
+            let line = &self.lines[at as usize].0;
+            (0..64)
+                .filter(move |&n| line[n] != KeyBytes::NONE)
+                .map(move |n| (KeySet::cell_in_block(*b, n as i64), line[n]))
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_key_bytes_map_holds_exactly_what_was_inserted_with_the_first_or_last_value() {
+        let mut map = KeyBytes::default();
+        let mut reference = std::collections::BTreeMap::new();
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..5000u32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let key = Key::new(
+                (x % 3) as u8,
+                ((x >> 8) % 37) as i64 - 18,
+                ((x >> 20) % 37) as i64 - 18,
+            );
+            let value = ((x >> 32) % 255) as u8;
+            if x >> 40 & 1 == 0 {
+                let new = !reference.contains_key(&key);
+                reference.entry(key).or_insert(value);
+                assert_eq!(map.insert_new(key, value), new, "{key:?}");
+            } else {
+                reference.insert(key, value);
+                map.insert(key, value);
+            }
+        }
+        assert_eq!(map.len(), reference.len());
+        for (key, &v) in &reference {
+            assert_eq!(map.get(key), Some(v), "{key:?}");
+        }
+        let mut listed: Vec<(Key, u8)> = map.iter().collect();
+        listed.sort();
+        let expected: Vec<(Key, u8)> = reference.into_iter().collect();
+        assert_eq!(listed, expected);
+        assert_eq!(map.get(&Key::new(0, 100, -100)), None);
+        assert_eq!(map.get(&Key::new(2, -19, 0)), None);
+    }
+
     #[test]
     fn a_key_index_maps_exactly_what_was_inserted_with_the_first_or_last_value() {
         let mut index = KeyIndex::default();

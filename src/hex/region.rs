@@ -13,7 +13,7 @@
 
 use std::rc::Rc;
 
-use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyBytes};
 use crate::hex::subdivision::{Cell, Hierarchy};
 
 /// How far (in cells of their own level) the class, the relocated centre and the triangles
@@ -26,8 +26,9 @@ pub const REACH: i64 = 8;
 #[derive(Debug, Clone, Default)]
 pub struct Region {
     /// The lattice distance of each cell within the widest reach built to the nearest anchor
-    /// of its level; shared by the narrower views of `within`.
-    dist: Rc<FxHashMap<Key, u8>>,
+    /// of its level; shared by the narrower views of `within`. Kept by 8 × 8 blocks: the
+    /// search below walks the lattice, and the checks ask about cells in the dual's order.
+    dist: Rc<KeyBytes>,
     /// The cells within this distance belong to the region.
     reach: u8,
     /// Two levels below the finest changed cell, plus one: below it nothing changed.
@@ -38,7 +39,7 @@ impl Region {
     /// The cells within `reach` of the ancestors, at every level, of `changed`, and of the
     /// cells up to two levels finer (a subdivision creates children).
     pub fn around(changed: &[Key], reach: i64) -> Region {
-        let reach = reach.clamp(0, u8::MAX as i64) as u8;
+        let reach = reach.clamp(0, KeyBytes::NONE as i64 - 1) as u8;
         let mut anchors: FxHashMap<u8, FxHashSet<(i64, i64)>> = FxHashMap::default();
         let mut depth = 0;
         for &c in changed {
@@ -60,14 +61,14 @@ impl Region {
         // breadth-first search over the six lattice directions: each cell is visited once,
         // where the discs of anchors a few cells apart (the finer levels, where adjacent
         // changed cells give anchors 2^s apart) overlapped many times.
-        let mut dist: FxHashMap<Key, u8> = FxHashMap::default();
+        let mut dist = KeyBytes::default();
         for k in levels {
             let mut cells: Vec<(i64, i64)> = anchors[&k].iter().copied().collect();
             cells.sort_unstable();
             let mut frontier: Vec<Key> = Vec::with_capacity(cells.len());
             for (i, j) in cells {
                 let key = Key::new(k, i, j);
-                if dist.insert(key, 0).is_none() {
+                if dist.insert_new(key, 0) {
                     frontier.push(key);
                 }
             }
@@ -76,8 +77,7 @@ impl Region {
                 for c in &frontier {
                     for d in 0..6 {
                         let n = c.neighbor(d);
-                        if let std::collections::hash_map::Entry::Vacant(v) = dist.entry(n) {
-                            v.insert(step);
+                        if dist.insert_new(n, step) {
                             next.push(n);
                         }
                     }
@@ -103,7 +103,7 @@ impl Region {
 
     /// True when `key` lies within the region at its own level.
     pub fn contains(&self, key: Key) -> bool {
-        key.k < self.depth && self.dist.get(&key).is_some_and(|&d| d <= self.reach)
+        key.k < self.depth && self.dist.get(&key).is_some_and(|d| d <= self.reach)
     }
 
     /// True when a lattice triangle of the dual recursion may hold changed triangles: one of
@@ -116,13 +116,13 @@ impl Region {
     pub fn cells(&self) -> impl Iterator<Item = Key> + '_ {
         self.dist
             .iter()
-            .filter(|&(k, &d)| d <= self.reach && k.k < self.depth)
-            .map(|(k, _)| *k)
+            .filter(|&(k, d)| d <= self.reach && k.k < self.depth)
+            .map(|(k, _)| k)
     }
 
     /// The number of cells held, over all levels (a measure of the work done).
     pub fn len(&self) -> usize {
-        self.dist.values().filter(|&&d| d <= self.reach).count()
+        self.dist.iter().filter(|&(_, d)| d <= self.reach).count()
     }
 
     pub fn is_empty(&self) -> bool {

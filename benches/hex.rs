@@ -5,9 +5,9 @@
 //! The extended mesher `hex` runs on the paper's own plane-1k and plane-2k (Table 1: 30.4 s and
 //! 123 s) and on plane-10k and plane-100k, with the output triangles as the throughput, so that
 //! criterion prints the time per output triangle: flat when the work is O(output). plane-1m
-//! (114 million triangles, several minutes and about 14 GB a run) joins them when the
+//! (114 million triangles, about six minutes and 12 GB a run) joins them when the
 //! environment sets `HEXMESH_BENCH_1M=1`: criterion's ten samples and a warm-up run then take
-//! about an hour, so a plain `cargo bench` leaves it out.
+//! about 80 minutes (measured: 81 on a 2-core Xeon), so a plain `cargo bench` leaves it out.
 
 use criterion::{
     criterion_group, criterion_main, BenchmarkId, Criterion, SamplingMode, Throughput,

@@ -40,6 +40,17 @@ pub enum InputError {
     },
     /// The points are too close together or too far apart for f64 to mesh them.
     Range { detail: String },
+    /// Points `first` and `second` (0-based), `distance` apart, are too close together for
+    /// their coordinates: a mesh of them would use a rounding allowance of `needed` degrees
+    /// (infinite: more hexagon levels than the lattice has), more than the `allowed`
+    /// (`--max-rounding`; README "Checks").
+    Rounding {
+        first: usize,
+        second: usize,
+        distance: f64,
+        needed: f64,
+        allowed: f64,
+    },
 }
 
 impl InputError {
@@ -113,6 +124,31 @@ impl InputError {
                 point[1]
             ),
             InputError::Range { detail } => detail.clone(),
+            InputError::Rounding {
+                first: a,
+                second: b,
+                distance,
+                needed,
+                allowed,
+            } => {
+                let need = if needed.is_finite() {
+                    format!(
+                        "rounding to f64 would move an angle of their mesh by up to \
+                         {needed:.3e}°, more than the {allowed}° allowed (--max-rounding)"
+                    )
+                } else {
+                    format!(
+                        "they need more than {} levels of hexagons",
+                        crate::hex::lattice::MAX_LEVEL
+                    )
+                };
+                format!(
+                    "points {} and {} are {distance:e} apart, too close together for their \
+                     coordinates: {need}",
+                    n(a),
+                    n(b)
+                )
+            }
         }
     }
 }

@@ -25,6 +25,223 @@ fn coord(p: Point) -> robust::Coord<f64> {
     robust::Coord { x: p[0], y: p[1] }
 }
 
+/// ⌊log₂|x|⌋ for a finite non-zero `x`, subnormals included, read from the bits (exact: no
+/// rounded logarithm). 0 for 0; 1024 for infinities and NaN.
+pub fn exponent(x: f64) -> i32 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i32;
+    if biased != 0 {
+        return biased - 1023;
+    }
+    let mantissa = bits & ((1 << 52) - 1);
+    if mantissa == 0 {
+        0
+    } else {
+        // x = mantissa · 2^-1074.
+        63 - mantissa.leading_zeros() as i32 - 1074
+    }
+}
+
+/// x · 2ⁿ (C's `scalbn`): exact whenever the result is a normal number (or zero, or
+/// subnormal without lost bits); rounded once when it is subnormal, ±∞ beyond the range.
+pub fn scale2(mut x: f64, mut n: i32) -> f64 {
+    let p1023 = f64::from_bits(0x7fe0_0000_0000_0000); // 2^1023
+    let pm969 = f64::from_bits(((0x3ff - 1022 + 53) as u64) << 52); // 2^-969
+    if n > 1023 {
+        x *= p1023;
+        n -= 1023;
+        if n > 1023 {
+            x *= p1023;
+            n = (n - 1023).min(1023);
+        }
+    } else if n < -1022 {
+        // Two steps that keep the intermediate normal (2^-1022 · 2^53), so that only the
+        // last multiplication rounds (musl's scalbn).
+        x *= pm969;
+        n += 1022 - 53;
+        if n < -1022 {
+            x *= pm969;
+            n = (n + 1022 - 53).max(-1022);
+        }
+    }
+    x * f64::from_bits(((0x3ff + n) as u64) << 52)
+}
+
+/// The exponent (`exponent`) of the largest magnitude among `values`: scaling them all by
+/// 2^-e (`scale2`) brings the largest into [1, 2) and changes no bit of any of them that
+/// stays normal. 0 when every value is zero or one is not finite (nothing to scale).
+pub fn scale_exponent(values: &[f64]) -> i32 {
+    let mut m = 0.0f64;
+    for &v in values {
+        if !v.is_finite() {
+            return 0;
+        }
+        m = m.max(v.abs());
+    }
+    if m == 0.0 {
+        0
+    } else {
+        exponent(m)
+    }
+}
+
+/// The point (or vector) `p` times 2ⁿ, coordinate by coordinate (`scale2`).
+pub fn scale_point(p: Point, n: i32) -> Point {
+    [scale2(p[0], n), scale2(p[1], n)]
+}
+
+/// The exponent by which the predicates scale their points, when the largest coordinate
+/// magnitude lies outside [2^-limit, 2^limit]: `None` when no scaling is needed.
+fn predicate_scale(points: &[Point], limit: i32) -> Option<i32> {
+    let mut m = 0.0f64;
+    for &v in points.iter().flatten() {
+        if !v.is_finite() {
+            return None; // nothing to scale: `robust` gives what it gives
+        }
+        m = m.max(v.abs());
+    }
+    if m == 0.0 {
+        return None;
+    }
+    let e = exponent(m);
+    (e > limit || e < -limit).then_some(e)
+}
+
+/// `v · 2ⁿ` without losing the sign of a non-zero `v`: an underflow gives the smallest
+/// subnormal of that sign instead of zero (an overflow gives ±∞).
+fn scale_keeping_sign(v: f64, n: i32) -> f64 {
+    let r = scale2(v, n);
+    if r == 0.0 && v != 0.0 {
+        f64::from_bits(1).copysign(v)
+    } else {
+        r
+    }
+}
+
+/// `orient2d` for coordinates of any finite magnitude. Shewchuk's predicates are exact only
+/// while their products neither overflow nor underflow (`robust` gives a wrong sign for
+/// nearly collinear points from about 2^±510 on, and its error terms underflow sooner):
+/// when the largest coordinate is below 2^-300 or above 2^300, the three points are first
+/// scaled by the power of two that brings it into [1, 2) — exact, and the sign of a
+/// degree-2 polynomial does not change — and the result is scaled back (an underflow keeps
+/// its sign as the smallest subnormal, an overflow saturates to ±∞). Within that range it
+/// is `orient2d`, bit for bit.
+pub fn orient2d_scaled(a: Point, b: Point, c: Point) -> f64 {
+    match predicate_scale(&[a, b, c], 300) {
+        None => orient2d(a, b, c),
+        Some(e) => {
+            let s = |p| scale_point(p, -e);
+            scale_keeping_sign(orient2d(s(a), s(b), s(c)), 2 * e)
+        }
+    }
+}
+
+/// `incircle` for coordinates of any finite magnitude: its products of four coordinates
+/// overflow inside `robust` from about 2^256 on (NaN: 1e80 is beyond) and underflow below
+/// about 2^-260 (a wrong 0 for nearly cocircular points), so when the largest coordinate
+/// lies outside [2^-150, 2^150] the four points are scaled by the power of two that brings
+/// it into [1, 2) first (exact; the sign of the degree-4 determinant does not change). The
+/// magnitude is scaled back as in `orient2d_scaled`; callers use the sign. Within that range
+/// it is `incircle`, bit for bit.
+pub fn incircle_scaled(a: Point, b: Point, c: Point, d: Point) -> f64 {
+    match predicate_scale(&[a, b, c, d], 150) {
+        None => incircle(a, b, c, d),
+        Some(e) => {
+            let s = |p| scale_point(p, -e);
+            scale_keeping_sign(incircle(s(a), s(b), s(c), s(d)), 4 * e)
+        }
+    }
+}
+
+/// The Euclidean length of `v` without overflow or underflow in its squares: `v` is scaled
+/// by a power of two to a largest component in [1, 2), measured, and the length scaled back.
+/// Equal to `(v·v).sqrt()` bit for bit whenever that does not under- or overflow.
+pub fn norm(v: [f64; 2]) -> f64 {
+    let e = scale_exponent(&v);
+    let s = scale_point(v, -e);
+    scale2((s[0] * s[0] + s[1] * s[1]).sqrt(), e)
+}
+
+/// `dist` without overflow or underflow (`norm` of the difference).
+pub fn dist_scaled(a: Point, b: Point) -> f64 {
+    norm([a[0] - b[0], a[1] - b[1]])
+}
+
+/// A squared distance as `mantissa · 2^exponent` with the mantissa in [1, 2), so that it
+/// neither overflows nor underflows at any finite coordinates. Ordered like the squared
+/// distances; where `dist2` neither under- nor overflows, the order and `sqrt` are those of
+/// `dist2`, bit for bit.
+#[derive(Debug, Clone, Copy)]
+pub struct Dist2 {
+    exponent: i32,
+    mantissa: f64,
+}
+
+impl Dist2 {
+    pub const ZERO: Dist2 = Dist2 {
+        exponent: i32::MIN,
+        mantissa: 0.0,
+    };
+    /// Larger than every squared distance of finite points (and what non-finite ones get).
+    pub const INFINITY: Dist2 = Dist2 {
+        exponent: i32::MAX,
+        mantissa: f64::INFINITY,
+    };
+
+    /// The squared distance between `a` and `b`.
+    pub fn between(a: Point, b: Point) -> Dist2 {
+        let d = [a[0] - b[0], a[1] - b[1]];
+        if !(d[0].is_finite() && d[1].is_finite()) {
+            return Dist2::INFINITY;
+        }
+        if d[0] == 0.0 && d[1] == 0.0 {
+            return Dist2::ZERO;
+        }
+        let e = scale_exponent(&d);
+        let s = scale_point(d, -e);
+        let sum = s[0] * s[0] + s[1] * s[1]; // in [1, 8)
+        let j = exponent(sum);
+        Dist2 {
+            exponent: 2 * e + j,
+            mantissa: scale2(sum, -j),
+        }
+    }
+
+    /// The distance, rounded once (as `sqrt` of the squared distance); ±∞ only beyond f64.
+    pub fn sqrt(self) -> f64 {
+        if self.exponent == i32::MIN || self.exponent == i32::MAX {
+            return self.mantissa;
+        }
+        let odd = self.exponent.rem_euclid(2);
+        scale2(
+            scale2(self.mantissa, odd).sqrt(),
+            self.exponent.div_euclid(2),
+        )
+    }
+}
+
+impl PartialEq for Dist2 {
+    fn eq(&self, other: &Dist2) -> bool {
+        self.cmp(other) == std::cmp::Ordering::Equal
+    }
+}
+
+impl Eq for Dist2 {}
+
+impl PartialOrd for Dist2 {
+    fn partial_cmp(&self, other: &Dist2) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for Dist2 {
+    fn cmp(&self, other: &Dist2) -> std::cmp::Ordering {
+        self.exponent
+            .cmp(&other.exponent)
+            .then(self.mantissa.total_cmp(&other.mantissa))
+    }
+}
+
 /// Squared Euclidean distance.
 pub fn dist2(a: Point, b: Point) -> f64 {
     let dx = a[0] - b[0];
@@ -168,7 +385,7 @@ impl Hexagon {
 
     /// The lattice axes of the turned hexagon, [r·cos θ, √3·r·sin θ, r·sin θ, √3·r·cos θ]:
     /// the point at (X, Y) in units of r/2 and √3·r/2 along the unturned axes is
-    /// `center + ((A·X − B·Y)·s, (C·X + D·Y)·s)` with s = 1/2 (`turned_offset`).
+    /// `center + ((A·X − B·Y)·s, (C·X + D·Y)·s)` with s = 1/2 (`turned_point`).
     pub fn axes(&self) -> [f64; 4] {
         let r = self.circumradius;
         let sqrt3_r = r * 3f64.sqrt();
@@ -187,10 +404,14 @@ impl Hexagon {
             // The lattice's formula (`Lattice::grid_point` at level 0), so that the corners
             // it constructs are these bits.
             let axes = self.axes();
-            let [cx, cy] = self.center;
             return std::array::from_fn(|m| {
-                let o = turned_offset(axes, CORNER_X[m] as f64, CORNER_Y[m] as f64, 0.5);
-                [cx + o[0], cy + o[1]]
+                turned_point(
+                    self.center,
+                    axes,
+                    CORNER_X[m] as f64,
+                    CORNER_Y[m] as f64,
+                    0.5,
+                )
             });
         }
         let r = self.circumradius;
@@ -261,13 +482,48 @@ impl Hexagon {
     }
 }
 
-/// ((A·x − B·y)·scale, (C·x + D·y)·scale) for the axes [A, B, C, D] of `Hexagon::axes`: the one
-/// formula of turned lattice positions.
-pub fn turned_offset(axes: [f64; 4], x: f64, y: f64, scale: f64) -> [f64; 2] {
+/// `center + ((A·x − B·y)·scale, (C·x + D·y)·scale)` for the axes [A, B, C, D] of
+/// `Hexagon::axes`: the one formula of turned lattice positions. `scale` is a power of two.
+/// Each coordinate is rounded once from a sum accurate to about
+/// 2^-104 of its largest term, so its error is half an ulp of the coordinate itself (README
+/// "Checks": a vertex near the origin must not carry the rounding of a centre far from it).
+pub fn turned_point(center: Point, axes: [f64; 4], x: f64, y: f64, scale: f64) -> Point {
+    let one = |o: f64, a: f64, b: f64| {
+        // a·x + b·y as four exact parts, scaled exactly, then summed with o.
+        let (p, pe) = two_product(a, x);
+        let (q, qe) = two_product(b, y);
+        accurate_sum([o, p * scale, q * scale, pe * scale, qe * scale])
+    };
     [
-        (axes[0] * x - axes[1] * y) * scale,
-        (axes[2] * x + axes[3] * y) * scale,
+        one(center[0], axes[0], -axes[1]),
+        one(center[1], axes[2], axes[3]),
     ]
+}
+
+/// `o + step·n` rounded once (a fused multiply-add): a lattice coordinate whose error is half an
+/// ulp of itself, whatever the size of `o`.
+pub fn lattice_coordinate(o: f64, step: f64, n: f64) -> f64 {
+    step.mul_add(n, o)
+}
+
+/// a·b as the rounded product and its exact error.
+fn two_product(a: f64, b: f64) -> (f64, f64) {
+    let p = a * b;
+    (p, a.mul_add(b, -p))
+}
+
+/// The sum of a few terms, accurate as in twice the working precision and rounded once
+/// (Ogita, Rump and Oishi's Sum2: cascaded error-free additions).
+fn accurate_sum<const N: usize>(terms: [f64; N]) -> f64 {
+    let mut s = 0.0;
+    let mut err = 0.0;
+    for t in terms {
+        let sum = s + t;
+        let bv = sum - s;
+        err += (s - (sum - bv)) + (t - bv);
+        s = sum;
+    }
+    s + err
 }
 
 /// Minimum enclosing circle (centre, radius) of the finite points of a set by Welzl's randomized incremental

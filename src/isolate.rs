@@ -7,12 +7,13 @@
 //!
 //! request  = "HXMI" u32:version str:mesher params pslg
 //! params   = opt<f64>:min_angle opt<f64>:max_area opt<u64>:max_steps opt<u64>:max_vertices
-//!            opt<(u64 secs, u32 nanos)>:max_time
+//!            opt<(u64 secs, u32 nanos)>:max_time opt<f64>:max_rounding
 //! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64,f64,f64)>:hexagon (centre, circumradius, turn)
 //! answer   = payload u64:payload_len "HXMRESLT"
 //! payload  = 0u8 u8:complete opt<str>:stop_reason u64:steps u64:secs u32:nanos u64:peak_rss
 //!            u64:nv (f64, f64)×nv u64:nt (u32, u32, u32)×nt
 //!          | 1u8 str:mesher str:message
+//!          | 2u8 u64:first u64:second f64:distance f64:needed f64:allowed  (InputError::Rounding)
 //! opt<T>   = 0u8 | 1u8 T;  str = u32:len utf-8 bytes
 //!
 //! The answer is a trailer at the very end of stdout, and the child flushes C's stdio
@@ -25,7 +26,7 @@ use std::process::{Child, Command, ExitCode, ExitStatus, Stdio};
 use std::thread;
 use std::time::{Duration, Instant};
 
-use crate::error::{Error, Result};
+use crate::error::{Error, InputError, Result};
 use crate::geom::{Hexagon, Turn};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Budget, MeshRun, Params};
@@ -36,7 +37,7 @@ pub const CHILD_COMMAND: &str = "__run-mesher";
 
 const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
 const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
-const VERSION: u32 = 1;
+const VERSION: u32 = 2;
 /// How much of the child's stderr and stdout an error quotes.
 const TAIL_BYTES: usize = 2000;
 
@@ -247,6 +248,26 @@ pub fn child_main() -> ExitCode {
     let mut payload = Vec::new();
     match run_in_child(&name, &input, &params) {
         Ok((run, rss)) => encode_run(&mut payload, &run, rss),
+        // A refusal that names input points goes back as such, so that the parent can put
+        // the lines of its file on them.
+        Err(Error::Input {
+            problem:
+                InputError::Rounding {
+                    first,
+                    second,
+                    distance,
+                    needed,
+                    allowed,
+                },
+            ..
+        }) => {
+            payload.push(2);
+            put_u64(&mut payload, first as u64);
+            put_u64(&mut payload, second as u64);
+            for v in [distance, needed, allowed] {
+                put_f64(&mut payload, v);
+            }
+        }
         Err(e) => {
             let (mesher, message) = match e {
                 Error::Mesher { mesher, message } => (mesher, message),
@@ -338,6 +359,7 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
         put_u64(b, d.as_secs());
         put_u32(b, d.subsec_nanos());
     });
+    put_opt(&mut b, params.max_rounding, put_f64);
     put_u64(&mut b, input.points.len() as u64);
     for p in &input.points {
         put_f64(&mut b, p[0]);
@@ -502,6 +524,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     } else {
         None
     };
+    let max_rounding = if r.flag()? { Some(r.f64()?) } else { None };
     let points = r.points()?;
     let m = r.count(8)?;
     let segments = (0..m)
@@ -524,6 +547,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     let params = Params {
         min_angle,
         max_area,
+        max_rounding,
         budget: Budget {
             max_steps,
             max_vertices,
@@ -558,6 +582,19 @@ fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
                 },
                 message,
             });
+        }
+        2 => {
+            let first = usize::try_from(r.u64()?).unwrap_or(usize::MAX);
+            let second = usize::try_from(r.u64()?).unwrap_or(usize::MAX);
+            let (distance, needed, allowed) = (r.f64()?, r.f64()?, r.f64()?);
+            r.finish()?;
+            return Err(Error::input(InputError::Rounding {
+                first,
+                second,
+                distance,
+                needed,
+                allowed,
+            }));
         }
         b => return Err(r.bad(&format!("status byte {b}"))),
     }

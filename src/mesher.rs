@@ -25,6 +25,9 @@ pub struct Params {
     pub min_angle: Option<f64>,
     /// Requested maximum triangle area.
     pub max_area: Option<f64>,
+    /// The largest rounding allowance (degrees) a mesh of ours may use before the input is
+    /// refused (`quality::rounding`); `None`: `DEFAULT_MAX_ROUNDING_DEG`.
+    pub max_rounding: Option<f64>,
     pub budget: Budget,
 }
 
@@ -37,6 +40,17 @@ impl Params {
     pub fn with_max_area(mut self, area: f64) -> Params {
         self.max_area = Some(area);
         self
+    }
+
+    pub fn with_max_rounding(mut self, degrees: f64) -> Params {
+        self.max_rounding = Some(degrees);
+        self
+    }
+
+    /// The largest rounding allowance a mesh may use, in degrees.
+    pub fn max_rounding_deg(&self) -> f64 {
+        self.max_rounding
+            .unwrap_or(crate::quality::rounding::DEFAULT_MAX_ROUNDING_DEG)
     }
 
     pub fn with_budget(mut self, budget: Budget) -> Params {

@@ -115,11 +115,16 @@ fn segments_points_outside_the_hexagon_and_unresolvable_pairs_are_refused() {
     };
     let err = HexSimple.mesh(&outside, &Params::default()).unwrap_err();
     assert!(err.to_string().contains("point 1"), "{err}");
-    let close = Pslg::from_points(vec![[0.5, 0.5], [0.5 + 1e-12, 0.5], [0.0, 0.0]]);
+    // 1e-14 apart at 0.5: a mesh would use far more than the default 0.01° of rounding.
+    let close = Pslg::from_points(vec![[0.5, 0.5], [0.5 + 1e-14, 0.5], [0.0, 0.0]]);
     assert!(matches!(
         HexSimple.mesh(&close, &Params::default()),
         Err(hexmesh::Error::Input {
-            problem: hexmesh::InputError::Range { .. },
+            problem: hexmesh::InputError::Rounding {
+                first: 0,
+                second: 1,
+                ..
+            },
             ..
         })
     ));
@@ -157,26 +162,20 @@ fn the_hexagon_picture_draws_cells_the_dual_and_the_points() {
     assert!(svg.matches("<polygon").count() > run.mesh.triangles.len());
 }
 
-/// Two points 2e-7 apart in the unit hexagon need hexagons below the worst-case precision
-/// level: the hierarchy alone refuses them, while the mesher, which measures every output angle
-/// before trusting it, meshes them within the bounds (plane-1m needs exactly this).
+/// Two points 2e-7 apart in the unit hexagon, which the old worst-case precision level (a
+/// fixed 1e-6° for every angle) refused in the hierarchy alone: under the rounding allowance
+/// the hierarchy refines them and the mesher meshes them within the bounds (plane-1m needs
+/// this).
 #[test]
-fn a_pair_below_the_worst_case_precision_level_is_meshed_after_measuring_its_angles() {
+fn a_pair_below_the_old_worst_case_precision_level_is_meshed() {
     let input = Pslg {
         points: vec![[-1e-7, 0.0], [1e-7, 0.0]],
         hexagon: Some(Hexagon::new([0.0, 0.0], 1.0)),
         ..Pslg::default()
     };
-    let refused = hexmesh::hex::mesh_with_hierarchy(&input, &Params::default());
-    assert!(
-        matches!(
-            refused,
-            Err(hexmesh::Error::Input {
-                problem: hexmesh::InputError::Range { .. },
-                ..
-            })
-        ),
-        "the worst-case limit alone refuses this pair"
-    );
+    let (h, stop) =
+        hexmesh::hex::mesh_with_hierarchy(&input, &Params::default()).expect("hierarchy");
+    assert!(stop.is_none());
+    assert!(h.deepest() > 22, "{}", h.deepest());
     assert_simple_bounds(&input);
 }

@@ -137,7 +137,15 @@ fn the_json_names_each_check_with_status_value_and_limit() {
         .expect("min angle row");
     assert_eq!(min["status"], "fail");
     assert_eq!(min["limit"], 30.0);
-    assert_eq!(min["worst"]["triangle"], 0);
+    // The worst triangle is the one that lies farthest beyond its rounding allowance.
+    let fit = hexmesh::quality::rounding::angle_fit(
+        (0..mesh.triangles.len()).map(|t| (t, mesh.corners(t))),
+        30.0,
+        180.0,
+    )
+    .expect("triangles");
+    assert_eq!(min["worst"]["triangle"], fit.nearest.triangle);
+    assert!(min["rounding"]["used"].as_f64().is_some_and(|u| u > 0.0));
     assert_eq!(
         json["metrics"]["angle_histogram"].as_array().map(Vec::len),
         Some(180)

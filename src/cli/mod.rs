@@ -128,6 +128,11 @@ struct MeshArgs {
     /// Requested maximum triangle area.
     #[arg(long)]
     max_area: Option<f64>,
+    /// Our meshers (hex, hex-simple, rhomb) refuse an input, naming its two closest points,
+    /// rather than hand out a mesh that rounding to f64 moves beyond a bound by more than
+    /// this many degrees (README "Checks").
+    #[arg(long, value_name = "DEG")]
+    max_rounding: Option<f64>,
     /// Output prefix: writes PREFIX.node and PREFIX.ele (and the other --format files).
     #[arg(short = 'o', long = "out")]
     prefix: PathBuf,
@@ -273,9 +278,11 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         .iter()
         .map(|f| crate::io::Format::parse(f))
         .collect::<Result<Vec<_>>>()?;
+    refuse_to_overwrite_input(args, &formats)?;
     for (what, v) in [
         ("--min-angle", args.min_angle),
         ("--max-area", args.max_area),
+        ("--max-rounding", args.max_rounding),
     ] {
         if let Some(v) = v {
             if !v.is_finite() || v <= 0.0 {
@@ -295,6 +302,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     let params = Params {
         min_angle: args.min_angle,
         max_area: args.max_area,
+        max_rounding: args.max_rounding,
         budget: Budget {
             max_steps: args.max_steps,
             max_vertices: args.max_vertices,
@@ -302,7 +310,17 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         },
     };
     let exe = crate::isolate::find_exe()?;
-    let run = crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout)?.run;
+    let run = match crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout) {
+        Ok(isolated) => isolated.run,
+        // A refusal naming input points names them by the lines of the file they came from.
+        Err(Error::Input { problem, .. }) if Path::new(&args.input).exists() => {
+            return Err(crate::io::locate_input_error(
+                Path::new(&args.input),
+                problem,
+            ))
+        }
+        Err(e) => return Err(e),
+    };
     if !run.complete {
         eprintln!(
             "hexmesh: mesher {} stopped early: {}; no mesh written",
@@ -351,6 +369,20 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses, before anything runs, a `mesh` whose outputs (the `-o` files and the `--hexagons`
+/// picture) would replace a file INPUT is read from (`io::input_files`). The mesh files are
+/// written all or nothing by `io::write_mesh`.
+fn refuse_to_overwrite_input(args: &MeshArgs, formats: &[crate::io::Format]) -> Result<()> {
+    let path = Path::new(&args.input);
+    // As `load_input` decides: a dataset or example name reads no file.
+    if !(path.exists() || path.extension().is_some()) {
+        return Ok(());
+    }
+    let mut outputs = crate::io::mesh_files(&args.prefix, formats);
+    outputs.extend(args.hexagons.iter().cloned());
+    crate::io::refuse_to_overwrite(&outputs, &crate::io::input_files(path))
 }
 
 /// What `mesh` holds a finished mesh to: the mesher's own promises (`Bounds::parse` of its
@@ -479,7 +511,7 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         bar.finish_and_clear();
     }
     println!(
-        "fuzz {}: {} cases (seed {}), {} refused as below f64 resolution, {} failed",
+        "fuzz {}: {} cases (seed {}), {} refused as too close for f64 at their coordinates, {} failed",
         summary.mesher, summary.cases, summary.seed, summary.refused, summary.failures
     );
     println!(
@@ -490,6 +522,15 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         "worst radius ratio {:.7}, worst shortest edge / d_min {:.7}, most exact Delaunay \
          violations in one mesh {}",
         summary.worst_radius_ratio, summary.worst_edge_over_d_min, summary.max_delaunay_violations
+    );
+    println!(
+        "meshes by the largest rounding allowance used (degrees beyond the bounds): {}",
+        crate::hex::fuzz::ROUNDING_BINS
+            .iter()
+            .zip(summary.rounding_used)
+            .map(|(bin, n)| format!("{bin} {n}"))
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     for f in &summary.families {
         println!(

@@ -40,11 +40,12 @@
 //!   bad triangle around the moved cell. No move makes an edge shorter than l_min. A contested
 //!   cell whose triangle the self-check still rejects takes its moved role once, then the
 //!   search runs again, before anything is subdivided.
-//! - Precision: the refinement may go `CHECKED_LEVELS` below the worst-case precision level,
-//!   as `hex-simple` does, because the self-check measures every angle of the output and
-//!   tests every edge exactly. Below that level a rejected triangle may be rounding's doing,
-//!   and subdividing it only goes deeper (one set took 358 such splits, to 0.035·d_min), so
-//!   there the input is refused as too close for f64 instead.
+//! - Precision (README "Checks"): the self-check accepts an angle beyond the bounds by what
+//!   rounding of its corners explains (`breaks_bounds`), and leaves a pair that only rounding
+//!   made non-Delaunay to be flipped once the mesh is done (`settle_rounding`). Where
+//!   rounding alone may move an angle by more than `--max-rounding`, a rejected triangle may
+//!   be rounding's doing, and subdividing it only goes deeper (one set took 358 such splits,
+//!   to 0.035·d_min), so there the input is refused, naming its two closest points.
 //! - Sec. 6.1 admits that the bounds were checked on "almost all configurations". As a last
 //!   rule, the finished dual is verified (angles, exact empty-circle test) and the coarsest
 //!   hexagon of each offending triangle is subdivided, and the rules run again. The count of such
@@ -97,14 +98,31 @@ use crate::hex::region::{full_leaves_in, Region, REACH};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
+use crate::quality::rounding;
 
 /// The smallest angle of the extended refinement, atan(5/(3√3)), in degrees.
 pub fn min_angle_bound() -> f64 {
     (5.0 / (3.0 * 3f64.sqrt())).atan().to_degrees()
 }
 
-/// Slack of the self-check: below the 1e-6° the checks allow, above rounding.
+/// Slack of the self-check beyond the rounding allowance of each angle: below the 1e-6° floor
+/// of the checks' allowance (`quality::rounding`).
 const SELF_CHECK_SLACK: f64 = 1e-7;
+
+/// True when an angle of `t` lies beyond [α, 90°] by more than the self-check's slack plus
+/// what rounding of its corners explains (the allowance of `quality::rounding` less its
+/// floor): a configuration the rules must fix, not rounding's doing. Where rounding is a
+/// few ulps of unit coordinates this is the plain slack; at coordinates far larger than the
+/// hexagons (a set translated to 1e7) it grows with the allowance the checks grant.
+fn breaks_bounds(t: &[Point; 3]) -> bool {
+    (0..3).any(|m| {
+        let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
+        let beyond = rounding::beyond(angle_deg(a, b, c), min_angle_bound(), 90.0);
+        beyond > SELF_CHECK_SLACK
+            && beyond
+                > SELF_CHECK_SLACK + rounding::angle_allowance(a, b, c) - rounding::ANGLE_FLOOR_DEG
+    })
+}
 
 /// The extended hexagonal mesher (Sec. 5).
 #[derive(Debug, Clone, Copy, Default)]
@@ -179,12 +197,16 @@ impl Mesher for Hex {
                 elapsed: start.elapsed(),
             });
         }
-        let out = mesh_extended(input, params)?;
+        let mut out = mesh_extended(input, params)?;
         if let Some(t) = dual::first_inverted(&out.mesh) {
             return Err(Error::mesher(
                 self.name(),
                 format!("internal error: dual triangle {t} is not counter-clockwise"),
             ));
+        }
+        if out.stop.is_none() {
+            settle_rounding(&mut out.mesh, &input.points, params.max_rounding_deg())
+                .map_err(Error::input)?;
         }
         Ok(MeshRun {
             mesh: out.mesh,
@@ -280,7 +302,7 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
                 rings,
             })
         }
-        Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
+        Err(Stop::Precision(problem)) => Err(Error::input(problem)),
     }
 }
 
@@ -289,11 +311,6 @@ fn refine_and_verify(
     stats: &mut ExtendedStats,
     state: &mut RingState,
 ) -> Result<TriMesh, Stop> {
-    // The self-check below measures every angle of the finished mesh (and tests every edge
-    // with the exact empty-circle test), so levels below the worst-case precision limit are
-    // as safe here as in `hex-simple`: a triangle that rounding spoils is subdivided, and the
-    // input is refused only when that reaches the deeper limit.
-    h.allow_checked_levels();
     refine_simple(h)?;
     // The extended rules act on full leaves only, and `extended_actions` sorts what it finds,
     // so the full leaves as a block set do (not every leaf with its cell, sorted: at plane-1m
@@ -966,19 +983,11 @@ pub(crate) fn extend_and_verify(
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();
         bad.sort();
         bad.dedup();
-        // Below the worst-case precision limit a rejected triangle may be rounding's doing,
-        // which subdividing only makes worse (and drives the mesh below the r_min of
-        // Sec. 6.3): the input is refused as too close for f64 instead.
-        if let Some(deep) = bad.iter().find(|k| k.k >= h.guaranteed_level()) {
-            return Err(Stop::Precision(format!(
-                "the input points are too close together for this bounding hexagon: the \
-                 dual around level-{} hexagon ({}, {}) misses the angle bounds below the \
-                 level f64 guarantees ({})",
-                deep.k,
-                deep.i,
-                deep.j,
-                h.guaranteed_level()
-            )));
+        // Where rounding alone may move an angle by more than the mesh may use, a rejected
+        // triangle cannot be told from rounding's doing, and subdividing it only goes deeper
+        // (one set took 358 such splits, to 0.035·d_min): the input is refused instead.
+        if let Some(&deep) = bad.iter().find(|&&k| h.rounding_at(k) > h.max_rounding()) {
+            return Err(Stop::Precision(h.too_fine(deep, h.rounding_at(deep))));
         }
         h.log.clear();
         for key in bad {
@@ -1243,8 +1252,6 @@ fn spread_moved_triangle(h: &Hierarchy, key: Key, class: Class, strip: FinStrip)
         })
         .collect();
     let filter = AngleFilter::new();
-    let lo = min_angle_bound() - SELF_CHECK_SLACK;
-    let hi = 90.0 + SELF_CHECK_SLACK;
     for d in 0..6 {
         let (Some((a, pa)), Some((b, pb))) = (near[d], near[(d + 1) % 6]) else {
             continue;
@@ -1253,11 +1260,7 @@ fn spread_moved_triangle(h: &Hierarchy, key: Key, class: Class, strip: FinStrip)
         if filter.clearly_within(&t) {
             continue;
         }
-        let bad = (0..3).any(|m| {
-            let x = angle_deg(t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
-            x < lo || x > hi
-        });
-        if bad {
+        if breaks_bounds(&t) {
             return [key, a, b].into_iter().min_by_key(|k| (k.k, *k));
         }
     }
@@ -1833,8 +1836,6 @@ struct BadTriangle {
 
 /// The triangles that break the angle bounds or the exact empty-circle test.
 fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTriangle> {
-    let lo = min_angle_bound() - SELF_CHECK_SLACK;
-    let hi = 90.0 + SELF_CHECK_SLACK;
     let filter = AngleFilter::new();
     let mut bad_tris: Vec<usize> = Vec::new();
     for t in 0..mesh.triangles.len() {
@@ -1842,16 +1843,17 @@ fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTrian
         if filter.clearly_within(&c) {
             continue;
         }
-        if (0..3).any(|m| {
-            let a = angle_deg(c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
-            a < lo || a > hi
-        }) {
+        if breaks_bounds(&c) {
             bad_tris.push(t);
         }
     }
+    // A pair that only rounding made non-Delaunay is flipped once the mesh is finished
+    // (`settle_rounding`), not refined.
     for (t, u) in delaunay_violations(mesh) {
-        bad_tris.push(t);
-        bad_tris.push(u);
+        if !rounding_made(mesh, t, u) {
+            bad_tris.push(t);
+            bad_tris.push(u);
+        }
     }
     bad_tris.sort_unstable();
     bad_tris.dedup();
@@ -1927,6 +1929,108 @@ pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
         }
     }
     out
+}
+
+/// The pair (t, u) sharing an edge, as (p, q, w1, w2): t = (p, q, w1) and u = (q, p, w2), both
+/// counter-clockwise, so that the quadrilateral is p, w2, q, w1.
+fn shared_edge(mesh: &TriMesh, t: usize, u: usize) -> Option<[u32; 4]> {
+    let (a, b) = (mesh.triangles[t], mesh.triangles[u]);
+    (0..3).find_map(|e| {
+        let (p, q) = (a[e], a[(e + 1) % 3]);
+        let w1 = a[(e + 2) % 3];
+        (0..3)
+            .find(|&f| b[f] == q && b[(f + 1) % 3] == p)
+            .map(|f| [p, q, w1, b[(f + 2) % 3]])
+    })
+}
+
+/// True when the exact empty-circle test fails on the pair (t, u) only by what rounding of
+/// their corners explains: the two angles opposite the shared edge sum to at most 180° plus
+/// the self-check's slack and their rounding allowances (less the floor). Real arithmetic
+/// puts such a pair on a circle (the cocircular quadruples of Sec. 6.4), or the flip makes
+/// it Delaunay.
+fn rounding_made(mesh: &TriMesh, t: usize, u: usize) -> bool {
+    let Some([p, q, w1, w2]) = shared_edge(mesh, t, u) else {
+        return false;
+    };
+    let v = |i: u32| mesh.vertices[i as usize];
+    let (p, q, w1, w2) = (v(p), v(q), v(w1), v(w2));
+    let excess = angle_deg(w1, p, q) + angle_deg(w2, q, p) - 180.0;
+    excess <= SELF_CHECK_SLACK
+        || excess
+            <= SELF_CHECK_SLACK
+                + rounding::angle_allowance(w1, p, q)
+                + rounding::angle_allowance(w2, q, p)
+                - 2.0 * rounding::ANGLE_FLOOR_DEG
+}
+
+/// Rounds of flips `settle_rounding` makes before it gives up.
+const FLIP_ROUNDS: usize = 64;
+
+/// Makes a finished mesh exactly Delaunay where rounding alone spoiled it (Sec. 6.4; README
+/// "Checks"): each pair the exact empty-circle test rejects, which the self-check let pass
+/// as rounding's doing (`rounding_made`), is flipped to its other diagonal when both new
+/// triangles keep the angle bounds within the self-check's slack (`breaks_bounds`); flips
+/// repeat until none is needed. Then the mesh is refused, naming the two input points near
+/// the worst angle, when an angle uses more rounding allowance than `max_rounding` degrees.
+/// A pair that cannot be flipped is refused the same way: no mesh with a non-Delaunay edge
+/// is handed out.
+pub fn settle_rounding(
+    mesh: &mut TriMesh,
+    points: &[Point],
+    max_rounding: f64,
+) -> std::result::Result<(), InputError> {
+    for _ in 0..FLIP_ROUNDS {
+        let pairs = delaunay_violations(mesh);
+        if pairs.is_empty() {
+            break;
+        }
+        let mut touched = vec![false; mesh.triangles.len()];
+        let mut flipped = false;
+        for (t, u) in pairs {
+            if touched[t] || touched[u] {
+                continue;
+            }
+            let Some([p, q, w1, w2]) = shared_edge(mesh, t, u) else {
+                continue;
+            };
+            let new = [[p, w2, w1], [w2, q, w1]];
+            let corners = new.map(|tri| tri.map(|i| mesh.vertices[i as usize]));
+            if corners
+                .iter()
+                .all(|c| orient2d(c[0], c[1], c[2]) > 0.0 && !breaks_bounds(c))
+            {
+                mesh.triangles[t] = new[0];
+                mesh.triangles[u] = new[1];
+                touched[t] = true;
+                touched[u] = true;
+                flipped = true;
+            }
+        }
+        if !flipped {
+            break;
+        }
+    }
+    if let Some(&(t, _)) = delaunay_violations(mesh).first() {
+        return Err(rounding::refusal_near(
+            points,
+            mesh.corners(t),
+            f64::INFINITY,
+            max_rounding,
+        ));
+    }
+    let tris = (0..mesh.triangles.len()).map(|t| (t, mesh.corners(t)));
+    if let Some(fit) = rounding::angle_fit(tris, min_angle_bound(), 90.0) {
+        if fit.most.used > max_rounding {
+            return Err(rounding::refusal_near(
+                points,
+                mesh.corners(fit.most.triangle),
+                fit.most.used,
+                max_rounding,
+            ));
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -22,8 +22,12 @@ pub struct FuzzSummary {
     pub mesher: String,
     pub seed: u64,
     pub cases: u64,
-    /// Cases refused with `InputError::Range` (points too close for f64 at that scale).
+    /// Cases refused as too close for f64 at their coordinates (`InputError::Rounding`, or
+    /// `InputError::Range`).
     pub refused: u64,
+    /// Meshes by the largest rounding allowance one of their angles uses (degrees beyond the
+    /// promised bounds, `quality::rounding`), in the bins of `ROUNDING_BINS`.
+    pub rounding_used: [u64; ROUNDING_BINS.len()],
     pub failures: u64,
     /// The smallest and largest angle seen over all meshes, in degrees.
     pub worst_min_angle: f64,
@@ -41,6 +45,26 @@ pub struct FuzzSummary {
     /// Every failing case (case number, family, where its input was written), so that a long
     /// campaign names all it found, not only the first.
     pub failed: Vec<(u64, &'static str, Option<PathBuf>)>,
+}
+
+/// The bins of `FuzzSummary::rounding_used`: none used, then at most 1e-9°, 1e-6°, 1e-4°,
+/// 1e-3°, 1e-2° and more.
+pub const ROUNDING_BINS: [&str; 7] = [
+    "0",
+    "≤1e-9°",
+    "≤1e-6°",
+    "≤1e-4°",
+    "≤1e-3°",
+    "≤1e-2°",
+    ">1e-2°",
+];
+
+/// The bin of `ROUNDING_BINS` an allowance of `used` degrees falls in.
+pub fn rounding_bin(used: f64) -> usize {
+    [0.0, 1e-9, 1e-6, 1e-4, 1e-3, 1e-2]
+        .iter()
+        .position(|&top| used <= top)
+        .unwrap_or(ROUNDING_BINS.len() - 1)
 }
 
 /// What a campaign found in one family of point sets.
@@ -65,7 +89,7 @@ pub struct FuzzFailure {
 /// The families of generated point sets, in the order cases cycle through them.
 /// The first seven are the original families, whose point sets are generated exactly as
 /// before; the families appended later only renumber the cases.
-pub const FAMILIES: [&str; 9] = [
+pub const FAMILIES: [&str; 10] = [
     "uniform",
     "clustered",
     "collinear",
@@ -75,6 +99,7 @@ pub const FAMILIES: [&str; 9] = [
     "lattice",
     "cocircular",
     "grid",
+    "projected",
 ];
 
 /// The angle bounds (degrees) a mesher promises, for the meshers this campaign knows.
@@ -114,6 +139,7 @@ pub fn fuzz_campaign_sized(
         seed,
         cases: 0,
         refused: 0,
+        rounding_used: [0; ROUNDING_BINS.len()],
         failures: 0,
         worst_min_angle: f64::INFINITY,
         worst_max_angle: f64::NEG_INFINITY,
@@ -162,6 +188,12 @@ pub fn fuzz_campaign_sized(
             )),
             Ok(run) => check_mesh(&run.mesh, &input.points, bounds)
                 .and_then(|stats| {
+                    if let Some((lo, hi)) = bounds {
+                        let tris = (0..run.mesh.triangles.len()).map(|t| (t, run.mesh.corners(t)));
+                        let used =
+                            quality::rounding::angle_fit(tris, lo, hi).map_or(0.0, |f| f.most.used);
+                        summary.rounding_used[rounding_bin(used)] += 1;
+                    }
                     // The harness's own checks too: validity, one disc, and every bound the
                     // mesher promises (radius ratio, shortest edge, Delaunay for `hex`).
                     let promised = quality::Bounds::parse(mesher).ok();
@@ -187,7 +219,7 @@ pub fn fuzz_campaign_sized(
                     summary.max_triangles = summary.max_triangles.max(run.mesh.triangles.len());
                 }),
             Err(Error::Input {
-                problem: InputError::Range { .. },
+                problem: InputError::Range { .. } | InputError::Rounding { .. },
                 ..
             }) => {
                 summary.refused += 1;
@@ -308,6 +340,7 @@ fn sized_family_case(seed: u64, case: u64, family: &str, max_points: usize) -> P
                 .collect()
         }
         "cocircular" => cocircular_points(&mut rng, n),
+        "projected" => projected_points(&mut rng, n),
         "grid" => grid_points(&mut rng, n),
         _ => lattice_points(&mut rng, n),
     };
@@ -357,6 +390,42 @@ fn cocircular_points(rng: &mut Pcg64, n: usize) -> Vec<Point> {
                 let (x, y) = (rng.random::<f64>() - 0.5, rng.random::<f64>() - 0.5);
                 v.push([centre[0] + radius * x, centre[1] + radius * y]);
             }
+        }
+    }
+    v
+}
+
+/// Points in projected map coordinates (UTM metres: x in [4e5, 6e5], y in [4e6, 6e6]) as a
+/// survey or a LiDAR tile gives them: a patch of 1 m to 10 km, its points uniform, on a
+/// 1 cm grid, or with a few pairs down to 1 mm apart.
+fn projected_points(rng: &mut Pcg64, n: usize) -> Vec<Point> {
+    let origin = [
+        rng.random_range(4e5..6e5f64).floor(),
+        rng.random_range(4e6..6e6f64).floor(),
+    ];
+    let size = 10f64.powf(rng.random_range(0.0..4.0));
+    let mut v: Vec<Point> = (0..n)
+        .map(|_| {
+            let p = [
+                origin[0] + size * rng.random::<f64>(),
+                origin[1] + size * rng.random::<f64>(),
+            ];
+            match rng.random_range(0..3) {
+                // Centimetres, as survey exports round them.
+                0 => [
+                    (p[0] * 100.0).round() / 100.0,
+                    (p[1] * 100.0).round() / 100.0,
+                ],
+                _ => p,
+            }
+        })
+        .collect();
+    if rng.random_bool(0.5) {
+        for k in 0..v.len().min(4) {
+            let gap = 10f64.powf(-rng.random_range(0.0..3.0));
+            let angle = rng.random::<f64>() * std::f64::consts::TAU;
+            let p = v[k];
+            v.push([p[0] + gap * angle.cos(), p[1] + gap * angle.sin()]);
         }
     }
     v
@@ -438,7 +507,7 @@ pub struct MeshStats {
 /// Checks a mesh against what every hexagonal mesher promises: triangles strictly
 /// counter-clockwise (exact), every directed edge used once and every edge by at most two
 /// triangles, no duplicate vertices, input point i is vertex i bit for bit, and (when given)
-/// every angle within the bounds with 1e-6° slack.
+/// every angle within the bounds up to its rounding allowance (`quality::rounding`).
 pub fn check_mesh(
     mesh: &TriMesh,
     points: &[Point],
@@ -497,17 +566,16 @@ pub fn check_mesh(
     let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
     for t in 0..mesh.triangles.len() {
         let c = mesh.corners(t);
-        for m in 0..3 {
-            let a = angle_deg(c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
-            lo = lo.min(a);
-            hi = hi.max(a);
-            if let Some((min, max)) = bounds {
-                if a < min - 1e-6 || a > max + 1e-6 {
-                    return Err(format!(
-                        "triangle {t} {:?} has an angle of {a:.9}° outside [{min:.6}°, {max}°]",
-                        mesh.triangles[t]
-                    ));
-                }
+        let (min, max) = bounds.unwrap_or((0.0, 180.0));
+        for u in quality::rounding::angle_uses(t, c, min, max) {
+            lo = lo.min(u.value);
+            hi = hi.max(u.value);
+            if bounds.is_some() && u.used > u.allowance {
+                return Err(format!(
+                    "triangle {t} {:?} has an angle of {:.9}° outside [{min:.6}°, {max}°] by \
+                     more than its rounding allowance of {:e}°",
+                    mesh.triangles[t], u.value, u.allowance
+                ));
             }
         }
     }

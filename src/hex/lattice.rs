@@ -9,7 +9,7 @@
 
 use std::hash::{BuildHasherDefault, Hasher};
 
-use crate::geom::{turned_offset, Hexagon, Point, Turn, CORNER_X, CORNER_Y};
+use crate::geom::{lattice_coordinate, turned_point, Hexagon, Point, Turn, CORNER_X, CORNER_Y};
 
 /// Deepest level the mesher constructs. Lattice coordinates of level k need k + 2 bits, and
 /// they must stay exact in an f64 mantissa (53 bits) when a position is computed.
@@ -175,7 +175,7 @@ pub struct Lattice {
     /// r_0·√3, rounded once, so that every y coordinate is one product and one sum.
     sqrt3_r0: f64,
     /// The root's rotation (`Hexagon::turn`); with one, positions are o + the turned axes
-    /// (`Hexagon::axes`, `turned_offset`) applied to (X, Y).
+    /// (`Hexagon::axes`, `turned_point`) applied to (X, Y).
     pub turn: Turn,
     axes: [f64; 4],
 }
@@ -217,12 +217,11 @@ impl Lattice {
         }
         let s = pow2(-(k as i32) - 1);
         if !self.turn.is_none() {
-            let o = turned_offset(self.axes, x as f64, y as f64, s);
-            return [self.origin[0] + o[0], self.origin[1] + o[1]];
+            return turned_point(self.origin, self.axes, x as f64, y as f64, s);
         }
         [
-            self.origin[0] + (self.r0 * x as f64) * s,
-            self.origin[1] + (self.sqrt3_r0 * y as f64) * s,
+            lattice_coordinate(self.origin[0], self.r0 * s, x as f64),
+            lattice_coordinate(self.origin[1], self.sqrt3_r0 * s, y as f64),
         ]
     }
 

@@ -29,10 +29,11 @@ pub mod subdivision;
 
 use std::time::Instant;
 
-use crate::error::{Error, InputError, Result};
+use crate::error::{Error, Result};
 use crate::geom::{Hexagon, Point};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
+use crate::quality::rounding;
 
 pub use dual::Placement;
 pub use fuzz::{fuzz_campaign, FuzzFailure, FuzzSummary};
@@ -70,7 +71,6 @@ impl Mesher for HexSimple {
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let start = Instant::now();
         let mut h = new_hierarchy(input, params, "hex-simple")?;
-        h.allow_checked_levels();
         let stop = run_simple(&mut h)?;
         let placement = if stop.is_none() {
             Placement::Relocated
@@ -84,8 +84,8 @@ impl Mesher for HexSimple {
                 format!("internal error: dual triangle {t} is not counter-clockwise"),
             ));
         }
-        if h.needs_angle_check() {
-            check_rounded_angles(&mesh)?;
+        if stop.is_none() {
+            check_rounded_angles(&mesh, &input.points, params.max_rounding_deg())?;
         }
         Ok(MeshRun {
             mesh,
@@ -136,11 +136,9 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
             format!("point {i} does not lie strictly inside the bounding hexagon"),
         ));
     }
-    Ok(Hierarchy::new(
-        Lattice::new(root),
-        input.points.clone(),
-        params.budget,
-    ))
+    let mut h = Hierarchy::new(Lattice::new(root), input.points.clone(), params.budget);
+    h.set_max_rounding(params.max_rounding_deg());
+    Ok(h)
 }
 
 /// Runs the simple refinement on a point set and returns the final hierarchy, with the reason
@@ -157,30 +155,13 @@ fn run_simple(h: &mut Hierarchy) -> Result<Option<String>> {
     match refine::refine_simple(h) {
         Ok(()) => Ok(None),
         Err(Stop::Budget(why)) => Ok(Some(format!("stopped by the {why}"))),
-        Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
+        Err(Stop::Precision(problem)) => Err(Error::input(problem)),
     }
 }
 
-/// The a-posteriori half of the precision rule: below the worst-case level limit every angle
-/// of the output is measured (as `quality` measures it) and the mesh is refused, as input too
-/// close for f64, when one misses [30°, 120°] by more than half the checks' 1e-6° slack.
-fn check_rounded_angles(mesh: &TriMesh) -> Result<()> {
-    let slack = crate::quality::ANGLE_SLACK_DEG / 2.0;
-    for t in 0..mesh.triangles.len() {
-        let [a, b, c] = mesh.corners(t);
-        for (p, q, r) in [(a, b, c), (b, c, a), (c, a, b)] {
-            let angle = crate::quality::angle_at(p, q, r);
-            if !(30.0 - slack..=120.0 + slack).contains(&angle) {
-                return Err(Error::input(InputError::Range {
-                    detail: format!(
-                        "the input points are too close together for this bounding hexagon: \
-                         rounding to f64 moves an angle of triangle {t} to {angle}°"
-                    ),
-                }));
-            }
-        }
-    }
-    Ok(())
+/// The mesh of `hex-simple` against [30°, 120°] (`quality::rounding::check_angles`).
+fn check_rounded_angles(mesh: &TriMesh, points: &[Point], max_rounding: f64) -> Result<()> {
+    rounding::check_angles(mesh, points, (30.0, 120.0), max_rounding, "hex-simple")
 }
 
 /// The error of a failed insertion into a finished mesh of the mesher `mesher`.
@@ -212,7 +193,7 @@ pub(crate) fn insert_error(mesher: &str, e: InsertError) -> Error {
 pub(crate) fn stop_error(mesher: &str, stop: Stop) -> Error {
     match stop {
         Stop::Budget(why) => Error::mesher(mesher, format!("stopped by the {why}")),
-        Stop::Precision(detail) => Error::input(InputError::Range { detail }),
+        Stop::Precision(problem) => Error::input(problem),
     }
 }
 
@@ -255,25 +236,53 @@ impl IncrementalHexSimple {
 mod tests {
     use super::*;
 
+    /// A right triangle at `offset` whose angle at the third corner is 30° less `short`
+    /// degrees.
+    fn thin(offset: f64, short: f64) -> TriMesh {
+        let tan = (30.0f64 - short).to_radians().tan();
+        TriMesh {
+            vertices: vec![
+                [offset, offset],
+                [offset + 1.0, offset],
+                [offset + 1.0, offset + tan],
+            ],
+            triangles: vec![[0, 1, 2]],
+        }
+    }
+
     #[test]
-    fn the_rounding_check_refuses_an_angle_just_outside_the_slack() {
-        // A right triangle whose smallest angle is 30° minus about 1e-6°.
-        let tan = (30.0f64 - 1e-6).to_radians().tan();
-        let bad = TriMesh {
-            vertices: vec![[0.0, 0.0], [1.0, 0.0], [1.0, tan]],
-            triangles: vec![[0, 1, 2]],
-        };
-        assert!(matches!(
-            check_rounded_angles(&bad),
+    fn the_rounding_check_refuses_a_mesh_that_uses_more_than_the_largest_rounding() {
+        // 30° − 1e-3° at 1e12, where the allowance (about 2e-2°) explains it but the mesh
+        // would use more than 1e-4°: refused, naming the input points beside it.
+        let mesh = thin(1e12, 1e-3);
+        let points = [mesh.vertices[0], mesh.vertices[1]];
+        match check_rounded_angles(&mesh, &points, 1e-4) {
             Err(Error::Input {
-                problem: InputError::Range { .. },
+                problem:
+                    crate::error::InputError::Rounding {
+                        first: 0,
+                        second: 1,
+                        needed,
+                        allowed,
+                        ..
+                    },
                 ..
-            })
+            }) => assert!(needed > 9e-4 && allowed == 1e-4, "{needed}"),
+            other => panic!("expected a rounding refusal, got {other:?}"),
+        }
+        // Allowed 0.01°, the same mesh passes.
+        assert!(check_rounded_angles(&mesh, &points, 0.01).is_ok());
+    }
+
+    #[test]
+    fn an_angle_beyond_its_allowance_is_a_defect_not_a_refusal() {
+        // 30° − 1e-5° at coordinates near 1: rounding explains about 1e-6°.
+        let mesh = thin(0.0, 1e-5);
+        let points = [mesh.vertices[0], mesh.vertices[1]];
+        assert!(matches!(
+            check_rounded_angles(&mesh, &points, 0.01),
+            Err(Error::Mesher { .. })
         ));
-        let good = TriMesh {
-            vertices: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 30f64.to_radians().tan()]],
-            triangles: vec![[0, 1, 2]],
-        };
-        assert!(check_rounded_angles(&good).is_ok());
+        assert!(check_rounded_angles(&thin(0.0, 0.0), &points, 0.01).is_ok());
     }
 }

@@ -81,7 +81,7 @@ use std::collections::BTreeMap;
 
 use spade::{ConstrainedDelaunayTriangulation, Point2, Triangulation};
 
-use crate::error::{Error, InputError, Result};
+use crate::error::{Error, Result};
 use crate::geom::{dist, incircle, min_enclosing_circle, orient2d, Hexagon, Point};
 use crate::hex::classify::{fin_mask, rings};
 use crate::hex::dual::{self, Placement};
@@ -286,7 +286,7 @@ pub fn mesh_pslg(input: &Pslg, params: &Params) -> Result<PslgRun> {
             NAME,
             format!("stopped by the {why} before the segments could be inserted"),
         )),
-        Err(Fail::Stop(Stop::Precision(detail))) => Err(Error::input(InputError::Range { detail })),
+        Err(Fail::Stop(Stop::Precision(problem))) => Err(Error::input(problem)),
         Err(Fail::Error(e)) => Err(e),
     }
 }
@@ -322,7 +322,7 @@ pub fn refine_pslg(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<S
     match outcome {
         Ok(()) => Ok((h, None)),
         Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),
-        Err(Stop::Precision(detail)) => Err(Error::input(InputError::Range { detail })),
+        Err(Stop::Precision(problem)) => Err(Error::input(problem)),
     }
 }
 

@@ -17,6 +17,7 @@
 
 use std::time::Instant;
 
+use crate::error::InputError;
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, Key, KeySet, Lattice, Parents, MAX_LEVEL};
 use crate::mesher::Budget;
@@ -40,8 +41,10 @@ pub enum Cell {
 pub enum Stop {
     /// A budget ran out; the message names it.
     Budget(String),
-    /// The points are too close together for the lattice (level or f64 precision limit).
-    Precision(String),
+    /// The points are too close together for the lattice: f64 cannot place the hexagons
+    /// they need within the rounding allowance, or they need more than `MAX_LEVEL` levels
+    /// (`InputError::Rounding`, naming the two points).
+    Precision(InputError),
 }
 
 /// The hexagon hierarchy with the input points distributed over its leaves.
@@ -67,12 +70,8 @@ pub struct Hierarchy {
     pub full_leaves: usize,
     budget: Budget,
     start: Instant,
-    /// The deepest level whose triangles f64 places within the angle tolerance in the worst
-    /// case (`level_limit`).
-    guaranteed_level: u8,
-    /// The deepest level refinement may reach: `guaranteed_level` plus `CHECKED_LEVELS` when
-    /// the caller checks the output's angles afterwards (`allow_checked_levels`).
-    level_limit: u8,
+    /// The largest rounding allowance (degrees) a finished mesh may use (`set_max_rounding`).
+    max_rounding: f64,
     /// The deepest level a hexagon has reached.
     deepest: u8,
     /// Hexagons that started or stopped being occupied, while `track_occupancy` is on (the
@@ -94,10 +93,8 @@ impl Hierarchy {
         // About seven subdivisions per point on uniform sets: reserving spares the rehashing of
         // tables that outgrow the caches.
         let expected = 8 * points.len() + 64;
-        let guaranteed = level_limit(&lattice);
         Hierarchy {
-            guaranteed_level: guaranteed,
-            level_limit: guaranteed,
+            max_rounding: crate::quality::rounding::DEFAULT_MAX_ROUNDING_DEG,
             deepest: 0,
             occupancy_changes: None,
             lattice,
@@ -344,32 +341,69 @@ impl Hierarchy {
         }
     }
 
-    /// Lets refinement go `CHECKED_LEVELS` below the worst-case precision limit. The worst case
-    /// (`level_limit`) is rarely met, so a caller that measures every output angle afterwards
-    /// and refuses the mesh when one misses the tolerance (`needs_angle_check`) can mesh
-    /// closer points than the bound alone allows.
-    pub fn allow_checked_levels(&mut self) {
-        self.level_limit = self
-            .guaranteed_level
-            .saturating_add(CHECKED_LEVELS)
-            .min(MAX_LEVEL);
+    /// Sets the largest rounding allowance, in degrees, that a finished mesh may use
+    /// (`quality::rounding`); refinement stops, naming the points, where hexagons would be
+    /// so small that rounding alone may move an angle by `ROUNDING_GUARD` times that.
+    pub fn set_max_rounding(&mut self, degrees: f64) {
+        self.max_rounding = degrees;
     }
 
-    /// The deepest level f64 places to the angle tolerance in the worst case (`level_limit`),
-    /// whatever `allow_checked_levels` opened below it.
-    pub fn guaranteed_level(&self) -> u8 {
-        self.guaranteed_level
+    /// The largest rounding allowance a finished mesh may use, in degrees.
+    pub fn max_rounding(&self) -> f64 {
+        self.max_rounding
+    }
+
+    /// How far rounding may move an angle of the dual triangles between the hexagons of
+    /// level `k` around `key` (degrees): every vertex within a few radii of the hexagon's
+    /// centre c moves by at most δ = 2^-50·(max(|cx|, |cy|) + 2·r_k), and the dual's edges
+    /// there are at least r_k/2 long (moved centres; Sec. 5.4), so an angle moves by at most
+    /// 4·δ/(r_k/2) radians (`quality::rounding`).
+    pub fn rounding_at(&self, key: Key) -> f64 {
+        let c = self.lattice.center(key);
+        let r = self.lattice.radius(key.k);
+        let delta =
+            crate::quality::rounding::ROUNDING_UNIT * (c[0].abs().max(c[1].abs()) + 2.0 * r);
+        (8.0 * delta / r).to_degrees()
+    }
+
+    /// The refusal of an input whose points near `key` are too close together for f64: the
+    /// closest pair of input points in the hexagon of `key` (or, when it holds fewer than
+    /// two, of the whole input) with their distance, and the allowance `needed` (degrees).
+    pub fn too_fine(&self, key: Key, needed: f64) -> InputError {
+        let mut inside: Vec<u32> = Vec::new();
+        let mut stack = vec![key];
+        // The points of the hexagon's leaves, through its subdivided descendants.
+        while let Some(k) = stack.pop() {
+            inside.extend_from_slice(self.occupants(k));
+            if self.is_subdivided(k) {
+                stack.extend(k.children().into_iter().filter(|c| c.inside()));
+            }
+        }
+        let ids: Vec<u32> = if inside.len() >= 2 {
+            inside
+        } else {
+            (0..self.points.len() as u32).collect()
+        };
+        let pts: Vec<Point> = ids.iter().map(|&i| self.points[i as usize]).collect();
+        let (first, second, distance) = match crate::quality::closest_pair(&pts) {
+            Some(c) => {
+                let (a, b) = (ids[c.first] as usize, ids[c.second] as usize);
+                (a.min(b), a.max(b), c.distance)
+            }
+            None => (0, 0, 0.0),
+        };
+        InputError::Rounding {
+            first,
+            second,
+            distance,
+            needed,
+            allowed: self.max_rounding,
+        }
     }
 
     /// The deepest level a hexagon has reached.
     pub fn deepest(&self) -> u8 {
         self.deepest
-    }
-
-    /// True when some hexagon lies below the worst-case precision limit, so the output's
-    /// angles must be measured before it is trusted.
-    pub fn needs_angle_check(&self) -> bool {
-        self.deepest > self.guaranteed_level
     }
 
     /// The time budget, checked now: for callers that do much work between subdivisions
@@ -384,13 +418,12 @@ impl Hierarchy {
     }
 
     fn check_budget(&self, key: Key) -> Result<(), Stop> {
-        if key.k + 1 > self.level_limit {
-            return Err(Stop::Precision(format!(
-                "the input points are too close together for this bounding hexagon: refining \
-                 them needs hexagons below level {} (radius {:e}), which f64 cannot place apart",
-                self.level_limit,
-                self.lattice.radius(self.level_limit)
-            )));
+        if key.k + 1 > MAX_LEVEL {
+            return Err(Stop::Precision(self.too_fine(key, f64::INFINITY)));
+        }
+        let needed = self.rounding_at(key.central_child());
+        if needed > ROUNDING_GUARD * self.max_rounding {
+            return Err(Stop::Precision(self.too_fine(key, needed)));
         }
         if let Some(max) = self.budget.max_steps {
             if self.steps >= max {
@@ -610,30 +643,9 @@ impl Hierarchy {
     }
 }
 
-/// Levels below `level_limit` that `allow_checked_levels` opens to a caller that checks the
-/// output's angles: each halves the hexagons, so the worst-case angle error could grow 8-fold.
-pub const CHECKED_LEVELS: u8 = 3;
-
-/// The deepest level whose triangles f64 can still place to the angle tolerance of the
-/// checks (DESIGN.md "Checks": 1e-6°). A constructed coordinate o + (r_0·X)·2^-(k+1) carries an
-/// error of at most E = (|o| + 3·r_0)·2^-53; an angle between two edges of length at least r_k
-/// moves by at most 4·√2·E/r_k. Keeping that below 1.5e-8 rad (0.86e-6°) bounds the level.
-/// Inputs that need deeper hexagons are refused rather than meshed with wrong angles.
-pub fn level_limit(lattice: &Lattice) -> u8 {
-    // A turned lattice (`Lattice::turn`) computes o + ((A·X − B·Y)·s, (C·X + D·Y)·s): inside
-    // the root |X·s| ≤ 1.1 and |Y·s| ≤ 0.55, so |A·X·s| + |B·Y·s| ≤ r_0·(1.1·|cos θ| +
-    // 0.95·|sin θ|) ≤ 1.45·r_0; the two products and their difference round by at most twice
-    // that, the sum with o by (|o| + 1.45·r_0): (|o| + 4.4·r_0)·2^-53 in all, and 6·r_0 keeps
-    // the margin the unturned 3·r_0 has over its (|o| + 2.2·r_0). (The roundings of A, B, C,
-    // D themselves are the same for every point: an affine change of the whole lattice by a
-    // relative 2^-52, not a moved vertex.)
-    let spread = if lattice.turn.is_none() { 3.0 } else { 6.0 };
-    let e = (lattice.origin[0].abs().max(lattice.origin[1].abs()) + spread * lattice.r0)
-        * (f64::EPSILON / 2.0);
-    let min_radius = 4.0 * std::f64::consts::SQRT_2 * e / 1.5e-8;
-    let mut k = 0u8;
-    while k < MAX_LEVEL && lattice.radius(k + 1) >= min_radius {
-        k += 1;
-    }
-    k
-}
+/// How many times the largest allowed rounding (`Hierarchy::set_max_rounding`) the worst case
+/// of `Hierarchy::rounding_at` may reach before refinement stops. The worst case adds up
+/// every vertex's largest move in the worst direction; the angles of a finished mesh, which
+/// decide (`quality::rounding::refusal`), move far less, so the guard only stops descents
+/// that could not end in a mesh.
+pub const ROUNDING_GUARD: f64 = 64.0;

@@ -97,6 +97,24 @@ impl fmt::Display for Format {
 /// [`Error::Input`], except duplicate points, which are an [`Error::Parse`] naming both lines.
 /// A `# hexmesh: hexagon CX CY R [COS SIN]` comment sets [`Pslg::hexagon`].
 pub fn read_input(path: &Path) -> Result<Pslg> {
+    let (pslg, source, base) = read_sourced(path)?;
+    match pslg.check() {
+        Ok(()) => Ok(pslg),
+        Err(problem) => Err(source.locate(&pslg, base, problem)),
+    }
+}
+
+/// A problem with the input read from `path` found later (a mesher's refusal naming input
+/// points), with the file and lines of what it names, as `read_input` gives its own.
+pub fn locate_input_error(path: &Path, problem: InputError) -> Error {
+    match read_sourced(path) {
+        Ok((pslg, source, base)) => source.locate(&pslg, base, problem),
+        Err(_) => Error::input(problem),
+    }
+}
+
+/// The input of `path` unchecked, with where each item came from and the file's first index.
+fn read_sourced(path: &Path) -> Result<(Pslg, Source, u32)> {
     let extension = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -185,10 +203,7 @@ pub fn read_input(path: &Path) -> Result<Pslg> {
         }
         pslg.holes = poly.holes;
     }
-    match pslg.check() {
-        Ok(()) => Ok(pslg),
-        Err(problem) => Err(source.locate(&pslg, base, problem)),
-    }
+    Ok((pslg, source, base))
 }
 
 /// Where each item of an input came from, to put file and line on [`InputError`]s.
@@ -258,6 +273,19 @@ impl Source {
                 &self.poly_path,
                 self.hole_lines.get(index).copied().unwrap_or(0),
             ),
+            InputError::Rounding { first, second, .. } => Error::Input {
+                path: Some(self.node_path.clone()),
+                line: Some(self.point_line(second)).filter(|&l| l > 0),
+                problem: InputError::Range {
+                    detail: format!(
+                        "{} (point {} is on line {})",
+                        problem.describe(base),
+                        first + base as usize,
+                        self.point_line(first)
+                    ),
+                },
+                first_index: base,
+            },
             InputError::Range { .. } => {
                 let largest = (0..pslg.points.len()).max_by(|&a, &b| {
                     let m = |i: usize| pslg.points[i][0].abs().max(pslg.points[i][1].abs());
@@ -324,55 +352,189 @@ pub fn read_mesh(prefix: &Path) -> Result<TriMesh> {
     })
 }
 
-/// Writes `mesh` in each of `formats` (each once) under `prefix`: PREFIX.node + PREFIX.ele
-/// (1-based, as Triangle writes them), PREFIX.vtk, PREFIX.msh, PREFIX.svg. Returns the files
-/// written, in order. A triangle naming a missing vertex or a non-finite vertex is refused
-/// before anything is written.
-pub fn write_mesh(prefix: &Path, mesh: &TriMesh, formats: &[Format]) -> Result<Vec<PathBuf>> {
-    check_mesh(prefix, mesh)?;
+/// The files [`write_mesh`] writes for `formats` under `prefix`, in the order it writes them
+/// (each format once): PREFIX.node + PREFIX.ele, PREFIX.vtk, PREFIX.msh, PREFIX.svg.
+pub fn mesh_files(prefix: &Path, formats: &[Format]) -> Vec<PathBuf> {
     let mut done: Vec<Format> = Vec::new();
-    let mut written = Vec::new();
+    let mut files = Vec::new();
     for &format in formats {
-        if done.contains(&format) {
-            continue;
-        }
-        done.push(format);
-        match format {
-            Format::Triangle => {
-                let node_path = with_suffix(prefix, "node");
-                let ele_path = with_suffix(prefix, "ele");
-                write_node(&node_path, &NodeFile::from_points(mesh.vertices.clone(), 1))?;
-                let ele = EleFile {
-                    triangles: mesh
-                        .triangles
-                        .iter()
-                        .map(|t| [t[0] + 1, t[1] + 1, t[2] + 1])
-                        .collect(),
-                    first_index: 1,
-                    ..EleFile::default()
-                };
-                write_ele(&ele_path, &ele)?;
-                written.push(node_path);
-                written.push(ele_path);
-            }
-            Format::Vtk => {
-                let path = with_suffix(prefix, "vtk");
-                write_vtk(&path, mesh)?;
-                written.push(path);
-            }
-            Format::Msh => {
-                let path = with_suffix(prefix, "msh");
-                write_msh(&path, mesh)?;
-                written.push(path);
-            }
-            Format::Svg => {
-                let path = with_suffix(prefix, "svg");
-                write_svg(&path, mesh, &SvgOptions::default())?;
-                written.push(path);
-            }
+        if !done.contains(&format) {
+            done.push(format);
+            files.extend(format.extensions().iter().map(|e| with_suffix(prefix, e)));
         }
     }
-    Ok(written)
+    files
+}
+
+/// Writes `mesh` in each of `formats` (each once) under `prefix`: PREFIX.node + PREFIX.ele
+/// (1-based, as Triangle writes them), PREFIX.vtk, PREFIX.msh, PREFIX.svg. Returns the files
+/// written, in order ([`mesh_files`]). A triangle naming a missing vertex or a non-finite
+/// vertex is refused before anything is written.
+///
+/// All or nothing: every file is first written under a temporary name beside its own
+/// (`.NAME.tmp-PID`), and the files are renamed into place only when all of them have been
+/// written. When any step fails, the temporaries are removed and the files an earlier run
+/// left at these names are put back, so that no output file is created or changed.
+pub fn write_mesh(prefix: &Path, mesh: &TriMesh, formats: &[Format]) -> Result<Vec<PathBuf>> {
+    check_mesh(prefix, mesh)?;
+    let targets = mesh_files(prefix, formats);
+    let nodes = || NodeFile::from_points(mesh.vertices.clone(), 1);
+    let ele = || EleFile {
+        triangles: mesh
+            .triangles
+            .iter()
+            .map(|t| [t[0] + 1, t[1] + 1, t[2] + 1])
+            .collect(),
+        first_index: 1,
+        ..EleFile::default()
+    };
+    let write = |target: &Path, path: &Path| -> Result<()> {
+        match target.extension().and_then(|e| e.to_str()) {
+            Some("node") => write_node(path, &nodes()),
+            Some("ele") => write_ele(path, &ele()),
+            Some("vtk") => write_vtk(path, mesh),
+            Some("msh") => write_msh(path, mesh),
+            _ => write_svg(path, mesh, &SvgOptions::default()),
+        }
+    };
+    write_all_or_nothing(&targets, write)?;
+    Ok(targets)
+}
+
+/// Writes each of `targets` with `write(target, temporary)` to a temporary file beside it,
+/// then renames them all into place; see [`write_mesh`]. On failure nothing is left behind
+/// (cleanup is best effort: a failing removal is not reported over the original error).
+fn write_all_or_nothing(
+    targets: &[PathBuf],
+    mut write: impl FnMut(&Path, &Path) -> Result<()>,
+) -> Result<()> {
+    let untouched = |target: &Path, source: std::io::Error| Error::Io {
+        path: target.to_path_buf(),
+        source: std::io::Error::new(
+            source.kind(),
+            format!("{source}; no output file was written or changed"),
+        ),
+    };
+    let remove = |paths: &[PathBuf]| {
+        for path in paths {
+            let _ = std::fs::remove_file(path);
+        }
+    };
+
+    // 1. Every file under a temporary name.
+    let mut temps: Vec<PathBuf> = Vec::with_capacity(targets.len());
+    for target in targets {
+        let temp = free_name_beside(target, "tmp");
+        temps.push(temp.clone());
+        if let Err(e) = write(target, &temp) {
+            remove(&temps);
+            return Err(match e {
+                Error::Io { path, source } if path == temp => untouched(target, source),
+                other => other,
+            });
+        }
+    }
+
+    // 2. A link to (or, where links fail, a copy of) every file already at a target name, to
+    // put back if a later rename fails. A directory in the way is left to its rename to fail.
+    let mut backups: Vec<Option<PathBuf>> = Vec::with_capacity(targets.len());
+    for target in targets {
+        let in_the_way = std::fs::symlink_metadata(target).is_ok_and(|m| !m.is_dir());
+        if !in_the_way {
+            backups.push(None);
+            continue;
+        }
+        let backup = free_name_beside(target, "bak");
+        let linked = std::fs::hard_link(target, &backup)
+            .or_else(|_| std::fs::copy(target, &backup).map(|_| ()));
+        if let Err(source) = linked {
+            remove(&temps);
+            remove(&backups.iter().flatten().cloned().collect::<Vec<_>>());
+            let _ = std::fs::remove_file(&backup);
+            return Err(untouched(target, source));
+        }
+        backups.push(Some(backup));
+    }
+
+    // 3. Every temporary onto its name; on a failure, the renamed ones are undone.
+    for (k, (temp, target)) in temps.iter().zip(targets).enumerate() {
+        if let Err(source) = std::fs::rename(temp, target) {
+            for (done, backup) in targets[..k].iter().zip(&backups[..k]).rev() {
+                let _ = match backup {
+                    Some(backup) => std::fs::rename(backup, done),
+                    None => std::fs::remove_file(done),
+                };
+            }
+            remove(&temps[k..]);
+            remove(&backups[k..].iter().flatten().cloned().collect::<Vec<_>>());
+            return Err(untouched(target, source));
+        }
+    }
+    remove(&backups.into_iter().flatten().collect::<Vec<_>>());
+    Ok(())
+}
+
+/// A name for a hidden scratch file beside `target` (same directory, so a rename onto
+/// `target` stays on one file system): `.NAME.TAG-PID`, with a counter when that is taken.
+fn free_name_beside(target: &Path, tag: &str) -> PathBuf {
+    let name = target.file_name().unwrap_or_default().to_string_lossy();
+    let pid = std::process::id();
+    (0u64..)
+        .map(|k| match k {
+            0 => target.with_file_name(format!(".{name}.{tag}-{pid}")),
+            _ => target.with_file_name(format!(".{name}.{tag}-{pid}-{k}")),
+        })
+        .find(|p| std::fs::symlink_metadata(p).is_err())
+        .unwrap_or_else(|| unreachable!("an unbounded range always yields a free name"))
+}
+
+/// The files [`read_input`] reads for `path`: the file itself and, for a `.poly` file that
+/// lists no points, the `.node` file beside it.
+pub fn input_files(path: &Path) -> Vec<PathBuf> {
+    let mut files = vec![path.to_path_buf()];
+    let poly = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("poly"));
+    // A .poly file that cannot be read here is counted as reading its .node: refusing too
+    // much is safe, refusing too little loses data.
+    if poly && read_poly(path).map_or(true, |p| p.nodes.points.is_empty()) {
+        files.push(path.with_extension("node"));
+    }
+    files
+}
+
+/// Refuses (as [`Error::Usage`], naming both files) to write any of `outputs` over any of
+/// `inputs`. Paths are compared as the files they name: `./a.node`, `d/../a.node`, a
+/// symbolic link to the input and (on Unix) a hard link to it are all the input.
+pub fn refuse_to_overwrite(outputs: &[PathBuf], inputs: &[PathBuf]) -> Result<()> {
+    for output in outputs {
+        if let Some(input) = inputs.iter().find(|input| same_file(output, input)) {
+            return Err(Error::Usage(format!(
+                "refusing to write {}: it would replace the input file {}; choose another \
+                 output name (nothing was written)",
+                output.display(),
+                input.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// Whether `a` and `b` name the same existing file (a path that does not exist is no file).
+fn same_file(a: &Path, b: &Path) -> bool {
+    if let (Ok(a), Ok(b)) = (std::fs::canonicalize(a), std::fs::canonicalize(b)) {
+        if a == b {
+            return true;
+        }
+    }
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        if let (Ok(a), Ok(b)) = (std::fs::metadata(a), std::fs::metadata(b)) {
+            return a.dev() == b.dev() && a.ino() == b.ino();
+        }
+    }
+    false
 }
 
 /// The extension [`write_pslg`] expects for `pslg`: "poly" when it has segments or holes,

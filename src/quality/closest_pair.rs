@@ -1,13 +1,16 @@
 //! d_min, the smallest distance between two input points: the quantity the paper's
 //! shortest-edge bound √7/(12√3)·d_min is stated in (Sußner & Greiner 2009, Sec. 6.3).
 //! A plane sweep in x with the active strip ordered by y (Shamos–Hoey style), O(n log n).
+//! Squared distances are compared as `geom::Dist2` (mantissa and exponent apart), which
+//! neither underflows nor overflows at any coordinates (at 1e-150, plain squares of
+//! distances are subnormal or zero) and orders like the plain squares wherever those are exact.
 
 use std::collections::BTreeSet;
 use std::ops::Bound::Included;
 
 use serde::Serialize;
 
-use crate::geom::{dist2, Point};
+use crate::geom::{Dist2, Point};
 
 /// The closest pair of a point set: indices (first < second) and their distance.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -46,10 +49,10 @@ pub fn closest_pair(points: &[Point]) -> Option<ClosestPair> {
             .then(points[a][1].total_cmp(&points[b][1]))
             .then(a.cmp(&b))
     });
-    let better = |d2: f64, pair: (usize, usize), best: &(f64, (usize, usize))| {
+    let better = |d2: Dist2, pair: (usize, usize), best: &(Dist2, (usize, usize))| {
         d2 < best.0 || (d2 == best.0 && pair < best.1)
     };
-    let mut best = (f64::INFINITY, (usize::MAX, usize::MAX));
+    let mut best = (Dist2::INFINITY, (usize::MAX, usize::MAX));
     // The strip holds the points with x within the best distance of the sweep line.
     let mut strip: BTreeSet<(u64, usize)> = BTreeSet::new();
     let mut tail = 0;
@@ -64,7 +67,7 @@ pub fn closest_pair(points: &[Point]) -> Option<ClosestPair> {
         let lo = (ordered(p[1] - d), 0);
         let hi = (ordered(p[1] + d), usize::MAX);
         for &(_, j) in strip.range((Included(lo), Included(hi))) {
-            let d2 = dist2(p, points[j]);
+            let d2 = Dist2::between(p, points[j]);
             let pair = (i.min(j), i.max(j));
             if better(d2, pair, &best) {
                 best = (d2, pair);

@@ -7,7 +7,9 @@
 
 use serde::Serialize;
 
-use crate::geom::{dist, incircle, orient2d, Point};
+use crate::geom::{
+    dist_scaled, incircle_scaled, orient2d_scaled, scale2, scale_exponent, scale_point, Point,
+};
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::closest_pair::closest_pair;
 use crate::quality::validate::topology;
@@ -76,33 +78,79 @@ pub struct TriangleShape {
     pub shortest_edge: f64,
 }
 
-/// The angle at `a` between rays to `b` and `c`, in degrees, from atan2 of the cross and dot
-/// products: accurate near 0° and 180°, where acos of a rounded cosine is not.
-pub fn angle_at(a: Point, b: Point, c: Point) -> f64 {
-    let u = [b[0] - a[0], b[1] - a[1]];
-    let v = [c[0] - a[0], c[1] - a[1]];
-    let cross = u[0] * v[1] - u[1] * v[0];
+/// The difference b − a.
+fn sub(b: Point, a: Point) -> [f64; 2] {
+    [b[0] - a[0], b[1] - a[1]]
+}
+
+/// The cross product u × v.
+fn cross(u: [f64; 2], v: [f64; 2]) -> f64 {
+    u[0] * v[1] - u[1] * v[0]
+}
+
+/// The angle between the vectors u and v, in degrees, from atan2 of the cross and dot
+/// products. Both are scaled alike (atan2 does not see a common factor), so the caller may
+/// scale u and v by one power of two.
+fn angle_between(u: [f64; 2], v: [f64; 2]) -> f64 {
     let dot = u[0] * v[0] + u[1] * v[1];
-    cross.abs().atan2(dot).to_degrees()
+    cross(u, v).abs().atan2(dot).to_degrees()
+}
+
+/// The angle at `a` between rays to `b` and `c`, in degrees, from atan2 of the cross and dot
+/// products: accurate near 0° and 180°, where acos of a rounded cosine is not. The two
+/// difference vectors are scaled by a power of two to a largest component in [1, 2) first
+/// (exact), so that their products neither overflow nor underflow at any coordinates.
+pub fn angle_at(a: Point, b: Point, c: Point) -> f64 {
+    let (u, v) = (sub(b, a), sub(c, a));
+    let e = scale_exponent(&[u[0], u[1], v[0], v[1]]);
+    angle_between(scale_point(u, -e), scale_point(v, -e))
 }
 
 /// The shape figures of triangle (a, b, c). R/(2r) = abc·s / (8·A²) with s the semiperimeter
 /// (R = abc/(4A), r = A/s); infinite for a degenerate triangle.
 pub fn triangle_shape(p: [Point; 3]) -> TriangleShape {
+    shape_and_area(p).0
+}
+
+/// `triangle_shape` and the signed area of the triangle. Every figure is computed on the
+/// edge vectors scaled by the power of two 2^-e that brings their largest component into
+/// [1, 2): exact, so angles and ratios are those of the unscaled vectors (bit for bit where
+/// the unscaled products neither overflow nor underflow), and no product of four lengths
+/// (the radius ratio) overflows or underflows at any coordinates. The shortest edge is
+/// scaled back by 2^e and the area by 2^2e.
+fn shape_and_area(p: [Point; 3]) -> (TriangleShape, f64) {
     let [a, b, c] = p;
-    let angles = [angle_at(a, b, c), angle_at(b, c, a), angle_at(c, a, b)];
+    // The differences from each corner to the other two, as the unscaled formulas take them.
+    let d = [
+        sub(b, a),
+        sub(c, a),
+        sub(c, b),
+        sub(a, b),
+        sub(a, c),
+        sub(b, c),
+    ];
+    // b − a, c − b and a − c hold every magnitude (the others are their negatives).
+    let e = scale_exponent(&[d[0][0], d[0][1], d[2][0], d[2][1], d[4][0], d[4][1]]);
+    let [ab, ac, bc, ba, ca, cb] = d.map(|v| scale_point(v, -e));
+    let angles = [
+        angle_between(ab, ac),
+        angle_between(bc, ba),
+        angle_between(ca, cb),
+    ];
     // Edge k is opposite corner k.
-    let e = [dist(b, c), dist(c, a), dist(a, b)];
-    let shortest = e[0].min(e[1]).min(e[2]);
-    let longest = e[0].max(e[1]).max(e[2]);
-    let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])).abs();
-    let s = 0.5 * (e[0] + e[1] + e[2]);
+    let length = |v: [f64; 2]| (v[0] * v[0] + v[1] * v[1]).sqrt();
+    let l = [length(cb), length(ac), length(ba)];
+    let shortest = l[0].min(l[1]).min(l[2]);
+    let longest = l[0].max(l[1]).max(l[2]);
+    let signed = 0.5 * cross(ab, ac);
+    let area = signed.abs();
+    let s = 0.5 * (l[0] + l[1] + l[2]);
     let radius_ratio = if area > 0.0 {
-        e[0] * e[1] * e[2] * s / (8.0 * area * area)
+        l[0] * l[1] * l[2] * s / (8.0 * area * area)
     } else {
         f64::INFINITY
     };
-    TriangleShape {
+    let shape = TriangleShape {
         angles,
         radius_ratio,
         edge_ratio: if shortest > 0.0 {
@@ -110,8 +158,9 @@ pub fn triangle_shape(p: [Point; 3]) -> TriangleShape {
         } else {
             f64::INFINITY
         },
-        shortest_edge: shortest,
-    }
+        shortest_edge: scale2(shortest, e),
+    };
+    (shape, scale2(signed, 2 * e))
 }
 
 /// Quality figures of the whole mesh; `input` supplies d_min.
@@ -170,7 +219,7 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
             used[v as usize] = true;
         }
         let p = mesh.corners(t);
-        let shape = triangle_shape(p);
+        let (shape, area) = shape_and_area(p);
         for &a in &shape.angles {
             keep_min(&mut m.min_angle, a, t);
             keep_max(&mut m.max_angle, a, t);
@@ -182,8 +231,7 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
         ratio_sum += shape.radius_ratio;
         keep_max(&mut m.edge_ratio_max, shape.edge_ratio, t);
         keep_min(&mut m.shortest_edge, shape.shortest_edge, t);
-        let [a, b, c] = p;
-        m.covered_area += 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
+        m.covered_area += area;
     }
     m.vertices = used.iter().filter(|&&u| u).count();
     let measured = member.iter().filter(|&&x| x).count();
@@ -215,11 +263,13 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
         {
             continue; // no circle to test; validate reports the coordinate
         }
-        let o = orient2d(pu, pv, p1);
+        // The scaled predicates: exact signs at any coordinate magnitude (`robust` alone
+        // overflows in incircle from about 1e77 on and underflows below about 1e-80).
+        let o = orient2d_scaled(pu, pv, p1);
         let inside = if o > 0.0 {
-            incircle(pu, pv, p1, p2) > 0.0
+            incircle_scaled(pu, pv, p1, p2) > 0.0
         } else if o < 0.0 {
-            incircle(pv, pu, p1, p2) > 0.0
+            incircle_scaled(pv, pu, p1, p2) > 0.0
         } else {
             false
         };
@@ -370,7 +420,7 @@ pub(crate) fn near_segment_triangles(mesh: &TriMesh, input: &Pslg, band: f64) ->
 /// is at most `band` (rounded arithmetic).
 fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
     let on_segment = |q: Point, a: Point, b: Point| {
-        orient2d(a, b, q) == 0.0
+        orient2d_scaled(a, b, q) == 0.0
             && q[0] >= a[0].min(b[0])
             && q[0] <= a[0].max(b[0])
             && q[1] >= a[1].min(b[1])
@@ -378,17 +428,17 @@ fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
     };
     let inside = |q: Point| {
         let o = [
-            orient2d(p[0], p[1], q),
-            orient2d(p[1], p[2], q),
-            orient2d(p[2], p[0], q),
+            orient2d_scaled(p[0], p[1], q),
+            orient2d_scaled(p[1], p[2], q),
+            orient2d_scaled(p[2], p[0], q),
         ];
         o.iter().all(|&x| x >= 0.0) || o.iter().all(|&x| x <= 0.0)
     };
     let crosses = |c: Point, d: Point| {
-        let o1 = orient2d(a, b, c);
-        let o2 = orient2d(a, b, d);
-        let o3 = orient2d(c, d, a);
-        let o4 = orient2d(c, d, b);
+        let o1 = orient2d_scaled(a, b, c);
+        let o2 = orient2d_scaled(a, b, d);
+        let o3 = orient2d_scaled(c, d, a);
+        let o4 = orient2d_scaled(c, d, b);
         let opposite = |x: f64, y: f64| (x > 0.0 && y < 0.0) || (x < 0.0 && y > 0.0);
         (opposite(o1, o2) && opposite(o3, o4))
             || on_segment(c, a, b)
@@ -412,16 +462,21 @@ fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
     d <= band
 }
 
-/// Distance from `q` to the segment ab (rounded arithmetic).
+/// Distance from `q` to the segment ab (rounded arithmetic). The parameter of the nearest
+/// point is computed on ab and aq scaled by one power of two (exact; the quotient does not
+/// see it), and the distance by `dist_scaled`, so that no square overflows or underflows.
 fn point_segment(q: Point, a: Point, b: Point) -> f64 {
-    let ab = [b[0] - a[0], b[1] - a[1]];
-    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let ab = sub(b, a);
+    let aq = sub(q, a);
+    let e = scale_exponent(&[ab[0], ab[1], aq[0], aq[1]]);
+    let (sab, saq) = (scale_point(ab, -e), scale_point(aq, -e));
+    let l2 = sab[0] * sab[0] + sab[1] * sab[1];
     let t = if l2 > 0.0 {
-        (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
+        ((saq[0] * sab[0] + saq[1] * sab[1]) / l2).clamp(0.0, 1.0)
     } else {
         0.0
     };
-    dist(q, [a[0] + t * ab[0], a[1] + t * ab[1]])
+    dist_scaled(q, [a[0] + t * ab[0], a[1] + t * ab[1]])
 }
 
 #[cfg(test)]

@@ -9,6 +9,8 @@ pub mod closest_pair;
 pub mod descent;
 /// Angles, radius ratio, edge ratio, shortest edge / d_min, Delaunay counts.
 pub mod metrics;
+/// The rounding allowance of every bound: how far f64 vertices may move a figure.
+pub mod rounding;
 /// Every structural invariant a mesh must meet, each broken one named.
 pub mod validate;
 /// Validity plus bounds, as a table and as JSON.
@@ -37,4 +39,4 @@ pub(crate) fn show(v: f64) -> String {
         format!("{v:e}")
     }
 }
-pub use verdict::{verdict, Check, Status, Verdict, WorstTriangle};
+pub use verdict::{verdict, Check, Rounding, Status, Verdict, WorstTriangle};

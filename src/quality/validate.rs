@@ -1,6 +1,9 @@
 //! Structural validity of a triangle mesh (DESIGN.md "Checks", *valid*): every violation of
 //! the invariants a mesh must satisfy before any quality figure means anything, each decided
-//! with exact orientation signs (Shewchuk's predicates through `geom::orient2d`).
+//! with exact orientation signs (Shewchuk's predicates through `geom::orient2d_scaled`,
+//! which scales the points by a power of two where `robust` would under- or overflow, so the
+//! signs stay exact at any coordinate magnitude). Lengths and areas are compared on
+//! coordinates scaled by powers of two for the same reason.
 //!
 //! Overlap is decided without area sums: with counter-clockwise triangles and paired interior
 //! edges, the number of triangles covering a point equals the winding number of the boundary
@@ -12,7 +15,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::geom::{dist, orient2d, Point};
+use crate::geom::{dist, orient2d_scaled, scale2, scale_exponent, scale_point, Dist2, Point};
 use crate::mesh::{Pslg, TriMesh};
 
 /// What `validate` checks beyond the invariants every mesh must meet.
@@ -478,7 +481,7 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
             continue;
         }
         let points = mesh.corners(t);
-        let o = orient2d(points[0], points[1], points[2]);
+        let o = orient2d_scaled(points[0], points[1], points[2]);
         if o < 0.0 {
             out.push(Violation::Clockwise {
                 triangle: t,
@@ -592,7 +595,7 @@ fn holes_covered(mesh: &TriMesh, geometric: &[bool], input: &Pslg, out: &mut Vec
                 input.points.get(s[1] as usize),
             ) {
                 (Some(&a), Some(&b)) => {
-                    orient2d(a, b, q) == 0.0
+                    orient2d_scaled(a, b, q) == 0.0
                         && q[0] >= a[0].min(b[0])
                         && q[0] <= a[0].max(b[0])
                         && q[1] >= a[1].min(b[1])
@@ -622,10 +625,10 @@ fn holes_covered(mesh: &TriMesh, geometric: &[bool], input: &Pslg, out: &mut Vec
         let (lo, hi) = (a[0].min(b[0]).min(c[0]), a[0].max(b[0]).max(c[0]));
         let start = seeds.partition_point(|s| s.1[0] < lo);
         for &(h, q) in seeds[start..].iter().take_while(|s| s.1[0] <= hi) {
-            let inside = orient2d(a, b, q) >= 0.0
-                && orient2d(b, c, q) >= 0.0
-                && orient2d(c, a, q) >= 0.0
-                && orient2d(a, b, c) > 0.0;
+            let inside = orient2d_scaled(a, b, q) >= 0.0
+                && orient2d_scaled(b, c, q) >= 0.0
+                && orient2d_scaled(c, a, q) >= 0.0
+                && orient2d_scaled(a, b, c) > 0.0;
             if inside && first[h].is_none() {
                 first[h] = Some(t);
             }
@@ -783,10 +786,10 @@ fn boundary_loops(
 /// True when the closed segments ab and cd meet anywhere other than at an endpoint they
 /// share as vertices (`shared`), decided with exact orientation signs.
 fn segments_meet(a: Point, b: Point, c: Point, d: Point, shared: usize) -> bool {
-    let o1 = orient2d(a, b, c);
-    let o2 = orient2d(a, b, d);
-    let o3 = orient2d(c, d, a);
-    let o4 = orient2d(c, d, b);
+    let o1 = orient2d_scaled(a, b, c);
+    let o2 = orient2d_scaled(a, b, d);
+    let o3 = orient2d_scaled(c, d, a);
+    let o4 = orient2d_scaled(c, d, b);
     let between = |p: Point, q: Point, x: Point| {
         x[0] >= p[0].min(q[0])
             && x[0] <= p[0].max(q[0])
@@ -860,11 +863,11 @@ fn boundary_crossings(verts: &[Point], boundary: &[DirectedEdge], out: &mut Vec<
 /// the ray from `p` through `q` (Sunday's crossing rule with exact signs: an endpoint on the
 /// ray's line counts as right of it, so shared endpoints are counted once).
 fn ray_crossing(p: Point, q: Point, a: Point, b: Point) -> i64 {
-    let left_a = orient2d(p, q, a) > 0.0;
-    let left_b = orient2d(p, q, b) > 0.0;
-    if !left_a && left_b && orient2d(a, b, p) > 0.0 {
+    let left_a = orient2d_scaled(p, q, a) > 0.0;
+    let left_b = orient2d_scaled(p, q, b) > 0.0;
+    if !left_a && left_b && orient2d_scaled(a, b, p) > 0.0 {
         1
-    } else if left_a && !left_b && orient2d(a, b, p) < 0.0 {
+    } else if left_a && !left_b && orient2d_scaled(a, b, p) < 0.0 {
         -1
     } else {
         0
@@ -875,9 +878,9 @@ fn ray_crossing(p: Point, q: Point, a: Point, b: Point) -> i64 {
 /// a y comparison, so it needs no second point on the ray (which p.x + 1 may not give).
 fn horizontal_crossing(p: Point, a: Point, b: Point) -> i64 {
     let (above_a, above_b) = (a[1] > p[1], b[1] > p[1]);
-    if !above_a && above_b && orient2d(a, b, p) > 0.0 {
+    if !above_a && above_b && orient2d_scaled(a, b, p) > 0.0 {
         1
-    } else if above_a && !above_b && orient2d(a, b, p) < 0.0 {
+    } else if above_a && !above_b && orient2d_scaled(a, b, p) < 0.0 {
         -1
     } else {
         0
@@ -894,7 +897,7 @@ fn overlaps(
     out: &mut Vec<Violation>,
 ) {
     let p = |v: u32| verts[v as usize];
-    let len2 = |k: usize| crate::geom::dist2(p(boundary[k].from), p(boundary[k].to));
+    let len2 = |k: usize| Dist2::between(p(boundary[k].from), p(boundary[k].to));
     for l in loops {
         let tested: Vec<usize> = if l.pinched {
             l.edges.clone()
@@ -902,7 +905,7 @@ fn overlaps(
             l.edges
                 .iter()
                 .copied()
-                .max_by(|&a, &b| len2(a).total_cmp(&len2(b)).then(b.cmp(&a)))
+                .max_by(|&a, &b| len2(a).cmp(&len2(b)).then(b.cmp(&a)))
                 .into_iter()
                 .collect()
         };
@@ -915,7 +918,7 @@ fn overlaps(
             let stretch =
                 (m[0].abs().max(m[1].abs()) / normal[0].abs().max(normal[1].abs())).max(1.0);
             let q = [m[0] + stretch * normal[0], m[1] + stretch * normal[1]];
-            if m == a || m == b || orient2d(a, b, q) <= 0.0 {
+            if m == a || m == b || orient2d_scaled(a, b, q) <= 0.0 {
                 continue; // too short or too large to place a probe; nothing to decide with
             }
             // m is within rounding of the edge; only a boundary edge passing within that
@@ -985,7 +988,10 @@ fn folds(mesh: &TriMesh, topo: &Topology, geometric: &[bool], out: &mut Vec<Viol
 }
 
 /// The signed triangle areas must add up to the signed area of the boundary loops (shoelace
-/// about the centre of the bounding box, to keep the cancellation small).
+/// about the centre of the bounding box, to keep the cancellation small). Both are summed on
+/// the coordinates scaled by the power of two that brings the largest into [1, 2) (exact, and
+/// the same bits as unscaled wherever those products stay normal), so that no product of two
+/// coordinates overflows or underflows; a mismatch reports them scaled back.
 fn area_balance(
     mesh: &TriMesh,
     geometric: &[bool],
@@ -1006,13 +1012,16 @@ fn area_balance(
     if lo[0] > hi[0] {
         return; // no triangle to measure
     }
+    let k = scale_exponent(&[lo[0], lo[1], hi[0], hi[1]]);
+    let s = |p: Point| scale_point(p, -k);
+    let (lo, hi) = (s(lo), s(hi));
     let o = [(lo[0] + hi[0]) / 2.0, (lo[1] + hi[1]) / 2.0];
     let cross = |a: Point, b: Point| (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
     let mut total = 0.0;
     let mut scale = 0.0;
     for (t, &g) in geometric.iter().enumerate() {
         if g {
-            let [a, b, c] = mesh.corners(t);
+            let [a, b, c] = mesh.corners(t).map(s);
             let area = 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0]));
             total += area;
             scale += area.abs();
@@ -1021,12 +1030,17 @@ fn area_balance(
     let enclosed: f64 = 0.5
         * boundary
             .iter()
-            .map(|e| cross(mesh.vertices[e.from as usize], mesh.vertices[e.to as usize]))
+            .map(|e| {
+                cross(
+                    s(mesh.vertices[e.from as usize]),
+                    s(mesh.vertices[e.to as usize]),
+                )
+            })
             .sum::<f64>();
     if (total - enclosed).abs() > 1e-9 * scale.max(enclosed.abs()) {
         out.push(Violation::AreaMismatch {
-            triangles: total,
-            enclosed,
+            triangles: scale2(total, 2 * k),
+            enclosed: scale2(enclosed, 2 * k),
         });
     }
 }
@@ -1117,14 +1131,19 @@ fn input_conformity(
         // Meshers split segments at constructed points (midpoints, crossings) that f64 can only
         // round onto the segment's line; a vertex counts as on the segment when it is within
         // 2^-40 of the segment's coordinate scale of the line: rounding, never a visible kink.
-        // Input endpoints still have to match bit-exactly (above).
-        let length = dist(pa, pb);
-        let scale = [pa[0], pa[1], pb[0], pb[1]]
+        // Input endpoints still have to match bit-exactly (above). The test runs on the points
+        // scaled by the power of two that brings the segment's largest coordinate into [1, 2)
+        // (exact; every quantity below scales alike, so the decision is the unscaled one),
+        // so that neither the length nor the orientation under- or overflows.
+        let k = scale_exponent(&[pa[0], pa[1], pb[0], pb[1]]);
+        let (sa, sb) = (scale_point(pa, -k), scale_point(pb, -k));
+        let length = dist(sa, sb);
+        let scale = [sa[0], sa[1], sb[0], sb[1]]
             .iter()
             .fold(length, |m, c| m.max(c.abs()));
         let tolerance = scale * (-40f64).exp2();
         let on_line = |pw: Point| {
-            let o = orient2d(pa, pb, pw);
+            let o = orient2d_scaled(sa, sb, scale_point(pw, -k));
             o == 0.0 || o.abs() / length <= tolerance
         };
         let end = progress(vb);

@@ -8,9 +8,10 @@ use serde::Serialize;
 
 use crate::geom::Point;
 use crate::mesh::{Pslg, TriMesh};
-use crate::quality::bounds::{Bounds, ANGLE_SLACK_DEG};
+use crate::quality::bounds::Bounds;
 use crate::quality::descent::descent;
-use crate::quality::metrics::{metrics, metrics_split, Metrics, SplitMetrics, Worst};
+use crate::quality::metrics::{metrics, metrics_split, triangle_shape, Metrics, SplitMetrics};
+use crate::quality::rounding::{self, angle_fit, fit_of, Fit, Use, ANGLE_FLOOR_DEG};
 use crate::quality::validate::{validate, ValidateOptions, Violation};
 
 /// The distance within which a vertex counts as lying on an input segment: the conformity
@@ -67,8 +68,18 @@ pub struct Check {
     pub status: Status,
     /// For a failed bound: the triangle where it fails worst.
     pub worst: Option<WorstTriangle>,
+    /// For a bound checked with the rounding allowance: the largest allowance a figure uses.
+    pub rounding: Option<Rounding>,
     /// Why a check was skipped, or which part of the mesh it covers.
     pub note: Option<String>,
+}
+
+/// The largest allowance a figure of a mesh uses against its bound, and the allowance that
+/// figure has (`quality::rounding`): both in the unit of the figure.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Rounding {
+    pub used: f64,
+    pub allowance: f64,
 }
 
 /// Validity, bounds and figures of one mesh.
@@ -119,6 +130,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             Status::Fail
         },
         worst: None,
+        rounding: None,
         note: None,
     }];
     if let Some(b) = bounds {
@@ -127,67 +139,113 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             (Some(s), true) => (&s.interior, Some("away from segments".to_string())),
             _ => (&all, None),
         };
-        let worst = |w: Option<Worst>| {
-            w.map(|w| WorstTriangle {
-                triangle: w.triangle,
-                corners: mesh.corners(w.triangle),
-                value: w.value,
-            })
+        // The triangles the shape bounds cover, with their corners (out-of-range corners are
+        // validate's business).
+        let mut part = vec![true; mesh.triangles.len()];
+        if let (Some(s), true) = (&split, interior_only) {
+            for &t in &s.near_triangles {
+                part[t] = false;
+            }
+        }
+        let n = mesh.vertices.len();
+        let covered = || {
+            (0..mesh.triangles.len())
+                .filter(|&t| part[t] && mesh.triangles[t].iter().all(|&v| (v as usize) < n))
+                .map(|t| (t, mesh.corners(t)))
         };
-        let mut bound = |what: &str, w: Option<Worst>, ge: bool, limit: f64, slack: f64| {
-            let value = w.map(|w| w.value);
-            let ok = value.is_none_or(|v| {
-                if ge {
-                    v >= limit - slack
-                } else {
-                    v <= limit + slack
-                }
-            });
+        let worst_at = |t: usize, value: f64| WorstTriangle {
+            triangle: t,
+            corners: mesh.corners(t),
+            value,
+        };
+        // A figure with its limit: it fails when some triangle uses more than its allowance
+        // (`nearest`, the one nearest to breaking it); `most` is the largest allowance used.
+        let mut bound = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>| {
+            let failed = fit.is_some_and(|f| f.nearest.used > f.nearest.allowance);
             checks.push(Check {
                 what: what.to_string(),
                 value,
                 relation: if ge { "≥" } else { "≤" }.to_string(),
                 limit,
-                status: if ok { Status::Ok } else { Status::Fail },
-                worst: if ok { None } else { worst(w) },
+                status: if failed { Status::Fail } else { Status::Ok },
+                worst: fit
+                    .filter(|_| failed)
+                    .map(|f| worst_at(f.nearest.triangle, f.nearest.value)),
+                rounding: fit.map(|f| Rounding {
+                    used: f.most.used,
+                    allowance: f.most.allowance,
+                }),
                 note: note.clone(),
             });
         };
         if let Some(limit) = b.min_angle {
-            bound("min angle (deg)", m.min_angle, true, limit, ANGLE_SLACK_DEG);
+            let fit = angle_fit(covered(), limit, 180.0);
+            bound(
+                "min angle (deg)",
+                m.min_angle.map(|w| w.value),
+                true,
+                limit,
+                fit,
+            );
         }
         if let Some(limit) = b.max_angle {
+            let fit = angle_fit(covered(), 0.0, limit);
             bound(
                 "max angle (deg)",
-                m.max_angle,
+                m.max_angle.map(|w| w.value),
                 false,
                 limit,
-                ANGLE_SLACK_DEG,
+                fit,
             );
         }
         if let Some(limit) = b.max_radius_ratio {
-            bound("radius ratio R/(2r)", m.radius_ratio_max, false, limit, 0.0);
+            let fit = fit_of(covered().map(|(t, c)| {
+                let shape = triangle_shape(c);
+                let allowance =
+                    rounding::radius_ratio_allowance(c, shape.angles, shape.radius_ratio);
+                Use {
+                    used: (shape.radius_ratio - limit).max(0.0),
+                    allowance,
+                    value: shape.radius_ratio,
+                    triangle: t,
+                }
+            }));
+            bound(
+                "radius ratio R/(2r)",
+                m.radius_ratio_max.map(|w| w.value),
+                false,
+                limit,
+                fit,
+            );
         }
         if let Some(limit) = b.min_edge_over_dmin {
-            let ratio = match (m.shortest_edge, m.d_min) {
-                (Some(s), Some(d)) if d > 0.0 => Some(Worst {
-                    value: s.value / d,
-                    triangle: s.triangle,
-                }),
-                _ => None,
-            };
-            if ratio.is_some() || m.shortest_edge.is_none() {
-                bound("shortest edge / d_min", ratio, true, limit, 0.0);
-            } else {
-                checks.push(Check {
+            match (m.shortest_edge, m.d_min) {
+                (Some(s), Some(d)) if d > 0.0 => {
+                    let fit = fit_of(covered().flat_map(|(t, c)| {
+                        (0..3).map(move |e| {
+                            let (p, q) = (c[e], c[(e + 1) % 3]);
+                            let ratio = rounding::length(p, q) / d;
+                            Use {
+                                used: (limit - ratio).max(0.0),
+                                allowance: rounding::edge_allowance(p, q) / d,
+                                value: ratio,
+                                triangle: t,
+                            }
+                        })
+                    }));
+                    bound("shortest edge / d_min", Some(s.value / d), true, limit, fit);
+                }
+                (None, _) => bound("shortest edge / d_min", None, true, limit, None),
+                _ => checks.push(Check {
                     what: "shortest edge / d_min".to_string(),
                     value: None,
                     relation: "≥".to_string(),
                     limit,
                     status: Status::Skipped,
                     worst: None,
+                    rounding: None,
                     note: Some("needs the input points (two or more)".to_string()),
-                });
+                }),
             }
         }
         if let Some(r) = b.min_angle_over_ancestor {
@@ -207,6 +265,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                     corners: mesh.corners(e.triangles[0]),
                     value: count as f64,
                 }),
+                rounding: None,
                 note: note.clone(),
             });
         }
@@ -233,6 +292,7 @@ fn descent_check(mesh: &TriMesh, input: Option<&Pslg>, r: f64) -> Check {
         limit: r,
         status: Status::Skipped,
         worst: None,
+        rounding: None,
         note: Some(note),
     };
     let Some(input) = input else {
@@ -254,7 +314,7 @@ fn descent_check(mesh: &TriMesh, input: Option<&Pslg>, r: f64) -> Check {
             Some(corners(t, f64::NAN)),
             Some("a triangle lies outside the initial triangulation".to_string()),
         ),
-        (None, Some((margin, t))) if margin < -ANGLE_SLACK_DEG => (
+        (None, Some((margin, t))) if margin < -ANGLE_FLOOR_DEG => (
             Status::Fail,
             Some(corners(t, d.min_ratio.map_or(f64::NAN, |(v, _)| v))),
             None,
@@ -268,6 +328,7 @@ fn descent_check(mesh: &TriMesh, input: Option<&Pslg>, r: f64) -> Check {
         limit: r,
         status,
         worst,
+        rounding: None,
         note,
     }
 }
@@ -279,6 +340,15 @@ fn number(v: Option<f64>) -> String {
         // Seven decimals say nothing about 1e-9 and run long for 1e20: seven digits instead.
         Some(v) if v.is_finite() && (v.abs() < 1e-4 || v.abs() >= 1e15) => format!("{v:.6e}"),
         Some(v) => format!("{v:.7}"),
+    }
+}
+
+/// A small non-negative figure in three significant digits (0 as 0).
+fn short(v: f64) -> String {
+    if v == 0.0 {
+        "0".to_string()
+    } else {
+        format!("{v:.2e}")
     }
 }
 
@@ -310,8 +380,8 @@ impl fmt::Display for Verdict {
             .max(5);
         writeln!(
             f,
-            "{:<width$} {:>14} {:>16}  result",
-            "check", "value", "limit"
+            "{:<width$} {:>14} {:>16}  {:>25}  result",
+            "check", "value", "limit", "rounding used (allowed)"
         )?;
         for c in &self.checks {
             let what = label(c);
@@ -320,9 +390,12 @@ impl fmt::Display for Verdict {
                 Status::Fail => "FAIL".to_string(),
                 Status::Skipped => format!("skipped: {}", c.note.as_deref().unwrap_or("")),
             };
+            let rounding = c.rounding.map_or(String::new(), |r| {
+                format!("{} ({})", short(r.used), short(r.allowance))
+            });
             writeln!(
                 f,
-                "{:<width$} {:>14} {:>16}  {result}",
+                "{:<width$} {:>14} {:>16}  {rounding:>25}  {result}",
                 what,
                 number(c.value),
                 format!("{} {}", c.relation, number(Some(c.limit)))
@@ -330,7 +403,10 @@ impl fmt::Display for Verdict {
         }
         writeln!(
             f,
-            "angle checks allow {ANGLE_SLACK_DEG}° for rounding; radius ratio is Verdict's R/(2r)"
+            "a figure may lie beyond its bound by its rounding allowance (for an angle at a of \
+             abc: {ANGLE_FLOOR_DEG}° + (δa + δb)/|ab| + (δa + δc)/|ac|, δv = 2^-50·max(|xv|, |yv|)); \
+             \"rounding used\" is the most any figure lies beyond, with that figure's allowance; \
+             radius ratio is Verdict's R/(2r)"
         )?;
         for c in self.checks.iter().filter(|c| c.status == Status::Fail) {
             if let Some(w) = &c.worst {

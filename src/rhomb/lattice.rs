@@ -152,21 +152,23 @@ impl Frame {
         let a = (2 * key.0 + key.1 - 3 * (1i64 << (KEY_BITS - 1))) as f64 / n;
         let b = (2 * key.1 - (1i64 << KEY_BITS)) as f64 / n;
         let [cx, cy] = self.hex.center;
-        let t = self.hex.turn;
-        if !t.is_none() {
-            // The turned hexagon's corners (`Hexagon::corners`) in the same roundings: R·a and
-            // h·b are the halves of its (A·X, B·Y) with X = 2a, Y = b.
-            let r = self.hex.circumradius;
-            let x = (r * t.cos) * a - (self.h * t.sin) * b;
-            let y = (r * t.sin) * a + (self.h * t.cos) * b;
-            return [cx + x, cy + y];
+        // Each coordinate is rounded once, so its error is half an ulp of itself (README
+        // "Checks"), as the hex lattice's are (`geom::turned_point`, `lattice_coordinate`).
+        if !self.hex.turn.is_none() {
+            // The turned hexagon's corners (`Hexagon::corners`): (A·X − B·Y)/2 with X = 2a,
+            // Y = b.
+            return crate::geom::turned_point(self.hex.center, self.hex.axes(), 2.0 * a, b, 0.5);
         }
         let x = if a == 0.0 {
             cx
         } else {
-            cx + self.hex.circumradius * a
+            crate::geom::lattice_coordinate(cx, self.hex.circumradius, a)
         };
-        let y = if b == 0.0 { cy } else { cy + self.h * b };
+        let y = if b == 0.0 {
+            cy
+        } else {
+            crate::geom::lattice_coordinate(cy, self.h, b)
+        };
         [x, y]
     }
 }

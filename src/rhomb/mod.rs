@@ -8,7 +8,7 @@
 //! a vertex bit-exactly (vertex i is input point i); the six hexagon corners are vertices.
 //! Inputs with segments (paper Sec. 5.1–5.8: moving conditions, border-boxes, polygon corners)
 //! are refused, as are points closer than 2^-48 of the hexagon (the lattice depth) and inputs
-//! whose needed triangles are too small for f64 output to keep the angles within 1e-6° (see
+//! whose triangles f64 output would move beyond the bounds by more than `--max-rounding` (see
 //! `rounding_check`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
 //! one output vertex each). A run stopped by a budget returns the balanced tree's triangulation
 //! without the input points (`complete == false`), which still meets the angle bounds.
@@ -25,7 +25,6 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::mesh::Pslg;
 use crate::mesher::{MeshRun, Mesher, Params};
-use crate::quality::ANGLE_SLACK_DEG;
 
 use lattice::Frame;
 use tree::{Guard, Stop, Tree};
@@ -126,7 +125,7 @@ impl Mesher for Rhomb {
             }
         };
         let mesh = patterns::triangulate(&tree, &frame, &input.points, &patches);
-        rounding_check(&mesh)?;
+        rounding_check(&mesh, &input.points, params.max_rounding_deg())?;
         Ok(MeshRun {
             mesh,
             complete: stop_reason.is_none(),
@@ -138,45 +137,17 @@ impl Mesher for Rhomb {
 }
 
 /// The construction's angles are exactly 30°–90° (patterns) or inside it with margin (moved
-/// points); only the rounding of lattice vertices to f64 can push one out. That happens when
-/// the input forces triangles far smaller than the coordinates, e.g. a point a relative 1e-9
-/// from a fitted hexagon's edge at a distance from the origin. We refuse rather than return a
-/// mesh that breaks the promise.
-fn rounding_check(mesh: &crate::mesh::TriMesh) -> Result<()> {
-    let mut worst: Option<(f64, usize)> = None;
-    let mut shortest = f64::INFINITY;
-    for t in 0..mesh.triangles.len() {
-        let c = mesh.corners(t);
-        for k in 0..3 {
-            let (o, a, b) = (c[k], c[(k + 1) % 3], c[(k + 2) % 3]);
-            shortest = shortest.min(crate::geom::dist(o, a));
-            let angle = angle_deg(o, a, b);
-            let excess = (30.0 - angle).max(angle - 90.0);
-            if excess > ANGLE_SLACK_DEG && worst.is_none_or(|(w, _)| excess > w) {
-                worst = Some((excess, t));
-            }
-        }
-    }
-    match worst {
-        None => Ok(()),
-        Some((excess, t)) => {
-            let magnitude = mesh
-                .vertices
-                .iter()
-                .flat_map(|p| [p[0].abs(), p[1].abs()])
-                .fold(0.0, f64::max);
-            Err(Error::mesher(
-                NAME,
-                format!(
-                    "f64 rounding of the output coordinates puts an angle of triangle {t} \
-                     {excess:e} degrees outside [30, 90]: the input needs edges as short as \
-                     {shortest:e} next to coordinates as large as {magnitude:e} (points very \
-                     close together or to the bounding hexagon's edges); translate the input \
-                     nearer the origin or enlarge the hexagon"
-                ),
-            ))
-        }
-    }
+/// points); only the rounding of lattice vertices to f64 can push one out, by at most the
+/// allowance of `quality::rounding`. That grows when the input forces triangles far smaller
+/// than the coordinates (points very close together, or to the fitted hexagon's edge, far
+/// from the origin): an input whose mesh would lie beyond [30°, 90°] by more than
+/// `max_rounding` degrees is refused, naming its points.
+fn rounding_check(
+    mesh: &crate::mesh::TriMesh,
+    points: &[crate::geom::Point],
+    max_rounding: f64,
+) -> Result<()> {
+    crate::quality::rounding::check_angles(mesh, points, (30.0, 90.0), max_rounding, NAME)
 }
 
 /// The angle at `o` of the triangle (o, a, b), in degrees.

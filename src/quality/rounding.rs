@@ -1,0 +1,293 @@
+//! The rounding allowance: how far a figure measured on f64 vertices may lie beyond a bound
+//! that holds in real arithmetic (README "Checks", "Rounding").
+//!
+//! A mesher places its vertices in f64, each a few roundings of its own coordinates away from
+//! where real arithmetic puts it. Vertex v moves by at most δv = 2^-50·max(|xv|, |yv|) (a
+//! rounding of a coordinate is at most 2^-53 of it; δv leaves room for several). The angle at
+//! a of triangle abc changes, to first order, by at most (δa + δb)/|ab| when a and b move
+//! across ab, and likewise along ac, so
+//!
+//!   A(a) = (δa + δb)/|ab| + (δa + δc)/|ac|   radians, plus `ANGLE_FLOOR_DEG`,
+//!
+//! and an angle θ meets [lo, hi] when lo − A(a) ≤ θ ≤ hi + A(a). The floor covers what no
+//! vertex move explains: the check's own arithmetic and the once-rounded constants (√3, the
+//! turn) that change the whole lattice alike.
+//!
+//! The radius ratio ρ = R/(2r) = 1/(8·∏ sin(θi/2)) of a triangle with angles θi has
+//! ∂ρ/∂θi = −ρ·½·cot(θi/2), so angle changes of at most A(i) change it by at most
+//! ρ·½·Σ cot(θi/2)·A(i). An edge ab changes by at most δa + δb; d_min is measured between
+//! input points, which every mesher keeps bit for bit, so shortest-edge/d_min may fall short
+//! by (δa + δb)/d_min.
+//!
+//! The allowance *used* by a figure is how far it lies beyond the exact bound (zero inside
+//! it). A check passes when no figure uses more than its allowance; our meshers also refuse
+//! to hand out a mesh any of whose figures uses more than `max_rounding` (default
+//! `DEFAULT_MAX_ROUNDING_DEG`), naming the input points that forced it.
+//!
+//! Every quantity is a ratio of lengths, computed from differences scaled by an exact power of
+//! two, so it neither overflows nor underflows for finite coordinates up to 1e150.
+
+use crate::geom::Point;
+
+/// δv over max(|xv|, |yv|): 2^-50, a few roundings of a coordinate.
+pub const ROUNDING_UNIT: f64 = 1.0 / (1u64 << 50) as f64;
+
+/// The part of every angle allowance that no vertex move explains, in degrees.
+pub const ANGLE_FLOOR_DEG: f64 = 1e-6;
+
+/// The largest allowance a mesh of ours may use before the input is refused, in degrees
+/// (`--max-rounding`).
+pub const DEFAULT_MAX_ROUNDING_DEG: f64 = 0.01;
+
+/// δv: how far rounding may have moved vertex `p` from its place in real arithmetic.
+pub fn delta(p: Point) -> f64 {
+    ROUNDING_UNIT * p[0].abs().max(p[1].abs())
+}
+
+/// |q − p| without overflow or underflow (`hypot` scales internally).
+pub fn length(p: Point, q: Point) -> f64 {
+    (q[0] - p[0]).hypot(q[1] - p[1])
+}
+
+/// The allowance of the angle at `a` of triangle (a, b, c), in degrees (module docs).
+pub fn angle_allowance(a: Point, b: Point, c: Point) -> f64 {
+    let da = delta(a);
+    let rad = (da + delta(b)) / length(a, b) + (da + delta(c)) / length(a, c);
+    rad.to_degrees() + ANGLE_FLOOR_DEG
+}
+
+/// The allowances of the three angles of triangle `t`, corner by corner, in degrees.
+pub fn angle_allowances(t: [Point; 3]) -> [f64; 3] {
+    std::array::from_fn(|m| angle_allowance(t[m], t[(m + 1) % 3], t[(m + 2) % 3]))
+}
+
+/// The allowance of the radius ratio `rho` of triangle `t` whose angles (degrees) are
+/// `angles`: ρ·½·Σ cot(θi/2)·A(i) (module docs).
+pub fn radius_ratio_allowance(t: [Point; 3], angles: [f64; 3], rho: f64) -> f64 {
+    let a = angle_allowances(t);
+    let sum: f64 = (0..3)
+        .map(|i| a[i].to_radians() / (angles[i].to_radians() / 2.0).tan())
+        .sum();
+    rho * 0.5 * sum
+}
+
+/// The allowance of edge (a, b) against a length bound: δa + δb.
+pub fn edge_allowance(a: Point, b: Point) -> f64 {
+    delta(a) + delta(b)
+}
+
+/// How far `value` lies beyond [lo, hi] (zero inside): the allowance it uses.
+pub fn beyond(value: f64, lo: f64, hi: f64) -> f64 {
+    (lo - value).max(value - hi).max(0.0)
+}
+
+/// One figure of one triangle against its bound: the allowance it uses and the one it has.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Use {
+    /// How far the figure lies beyond its bound (zero inside it).
+    pub used: f64,
+    /// How far rounding may move it.
+    pub allowance: f64,
+    /// The figure itself.
+    pub value: f64,
+    pub triangle: usize,
+}
+
+/// A bound over many figures: the one that uses the most allowance, and the one that comes
+/// nearest to breaking it (largest used − allowance). The bound holds when `nearest` does.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fit {
+    pub most: Use,
+    pub nearest: Use,
+}
+
+impl Fit {
+    /// True when no figure uses more than its allowance.
+    pub fn holds(&self) -> bool {
+        self.nearest.used <= self.nearest.allowance
+    }
+}
+
+/// The `Fit` of a set of figures; `None` for none.
+pub fn fit_of(uses: impl IntoIterator<Item = Use>) -> Option<Fit> {
+    let mut fit: Option<Fit> = None;
+    for u in uses {
+        match &mut fit {
+            None => {
+                fit = Some(Fit {
+                    most: u,
+                    nearest: u,
+                })
+            }
+            Some(f) => {
+                if u.used > f.most.used {
+                    f.most = u;
+                }
+                if u.used - u.allowance > f.nearest.used - f.nearest.allowance {
+                    f.nearest = u;
+                }
+            }
+        }
+    }
+    fit
+}
+
+/// The angles of triangle `triangle` with corners `t` against [lo, hi], in degrees. The
+/// allowance is computed only for an angle beyond the bound (inside, the angle uses none and
+/// cannot break it; its allowance is reported as the floor).
+pub fn angle_uses(triangle: usize, t: [Point; 3], lo: f64, hi: f64) -> [Use; 3] {
+    let th = [
+        crate::quality::angle_at(t[0], t[1], t[2]),
+        crate::quality::angle_at(t[1], t[2], t[0]),
+        crate::quality::angle_at(t[2], t[0], t[1]),
+    ];
+    std::array::from_fn(|m| {
+        let used = beyond(th[m], lo, hi);
+        Use {
+            used,
+            allowance: if used > 0.0 {
+                angle_allowance(t[m], t[(m + 1) % 3], t[(m + 2) % 3])
+            } else {
+                ANGLE_FLOOR_DEG
+            },
+            value: th[m],
+            triangle,
+        }
+    })
+}
+
+/// The `Fit` of every angle of the triangles `tris` (index, corners) against [lo, hi].
+pub fn angle_fit(tris: impl Iterator<Item = (usize, [Point; 3])>, lo: f64, hi: f64) -> Option<Fit> {
+    fit_of(tris.flat_map(|(t, c)| angle_uses(t, c, lo, hi)))
+}
+
+/// The refusal of an input whose mesh would use `needed` degrees of rounding allowance (more
+/// than `allowed`) at the triangle with corners `t`: the input point nearest the triangle and
+/// the input point nearest that one, with their distance. O(n) in the points.
+pub fn refusal_near(
+    points: &[Point],
+    t: [Point; 3],
+    needed: f64,
+    allowed: f64,
+) -> crate::error::InputError {
+    let centre = [
+        (t[0][0] + t[1][0] + t[2][0]) / 3.0,
+        (t[0][1] + t[1][1] + t[2][1]) / 3.0,
+    ];
+    let nearest = |to: Point, skip: Option<usize>| {
+        (0..points.len())
+            .filter(|&i| Some(i) != skip)
+            .min_by(|&i, &j| length(points[i], to).total_cmp(&length(points[j], to)))
+    };
+    let first = nearest(centre, None).unwrap_or(0);
+    let second =
+        nearest(points.get(first).copied().unwrap_or(centre), Some(first)).unwrap_or(first);
+    let distance = match (points.get(first), points.get(second)) {
+        (Some(&a), Some(&b)) => length(a, b),
+        _ => 0.0,
+    };
+    crate::error::InputError::Rounding {
+        first: first.min(second),
+        second: first.max(second),
+        distance,
+        needed,
+        allowed,
+    }
+}
+
+/// A finished mesh of one of our meshers (`mesher`) against its angle bounds (lo, hi), with
+/// the rounding allowance: refused, naming the two input points near the worst angle
+/// (`refusal_near`), when an angle lies beyond the bounds by more than `max_rounding`
+/// degrees. An angle beyond its allowance is a defect of the mesher, reported as such.
+pub fn check_angles(
+    mesh: &crate::mesh::TriMesh,
+    points: &[Point],
+    (lo, hi): (f64, f64),
+    max_rounding: f64,
+    mesher: &str,
+) -> crate::error::Result<()> {
+    use crate::error::Error;
+    let tris = (0..mesh.triangles.len()).map(|t| (t, mesh.corners(t)));
+    let Some(fit) = angle_fit(tris, lo, hi) else {
+        return Ok(());
+    };
+    if fit.most.used > max_rounding {
+        return Err(Error::input(refusal_near(
+            points,
+            mesh.corners(fit.most.triangle),
+            fit.most.used,
+            max_rounding,
+        )));
+    }
+    if !fit.holds() {
+        let n = fit.nearest;
+        return Err(Error::mesher(
+            mesher,
+            format!(
+                "internal error: an angle of triangle {} is {}°, beyond [{lo}°, {hi}°] by more \
+                 than its rounding allowance of {:e}°",
+                n.triangle, n.value, n.allowance
+            ),
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_allowance_is_the_floor_plus_a_few_roundings_over_the_edges() {
+        // A unit right triangle at 1e7: δ = 2^-50·1e7 at each corner, edges of 1.
+        let off = 1e7;
+        let t = [[off, off], [off + 1.0, off], [off, off + 1.0]];
+        let a = angle_allowance(t[0], t[1], t[2]);
+        let d = ROUNDING_UNIT * (off + 1.0);
+        let expected = (2.0 * ROUNDING_UNIT * off + 2.0 * d).to_degrees() + ANGLE_FLOOR_DEG;
+        assert!((a - expected).abs() < 1e-15, "{a} {expected}");
+        // Near the origin it is the floor and a few roundings of unit coordinates.
+        let u = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
+        let b = angle_allowance(u[0], u[1], u[2]);
+        assert!(b > ANGLE_FLOOR_DEG && b < ANGLE_FLOOR_DEG + 1e-12, "{b}");
+    }
+
+    #[test]
+    fn allowances_do_not_overflow_or_underflow_at_extreme_scales() {
+        for s in [1e-150, 1e-80, 1.0, 1e80, 1e150] {
+            let t = [[s, 0.0], [2.0 * s, 0.0], [s, s]];
+            let a = angle_allowances(t);
+            assert!(a.iter().all(|x| x.is_finite() && *x > 0.0), "{s}: {a:?}");
+            let r = radius_ratio_allowance(t, [90.0, 45.0, 45.0], 1.2071);
+            assert!(r.is_finite() && r > 0.0, "{s}: {r}");
+        }
+    }
+
+    #[test]
+    fn beyond_is_zero_inside_and_the_distance_outside() {
+        assert_eq!(beyond(45.0, 43.9, 90.0), 0.0);
+        assert_eq!(beyond(90.5, 43.9, 90.0), 0.5);
+        assert!((beyond(43.0, 43.9, 90.0) - 0.9).abs() < 1e-12);
+    }
+
+    #[test]
+    fn the_nearest_angle_is_the_one_closest_to_breaking_its_allowance() {
+        // Triangle 0 misses 90° by 1e-7° near the origin, triangle 1 by 2e-7° at 1e7, where
+        // its allowance is far larger: the first uses less but comes nearer to breaking.
+        let right = |o: f64, eps_deg: f64| {
+            let e = eps_deg.to_radians();
+            [[o, o], [o + e.cos(), o - e.sin()], [o, o + 1.0]]
+        };
+        let tris = [right(0.0, 1e-7), right(1e7, 2e-7)];
+        let fit = angle_fit(tris.iter().copied().enumerate(), 30.0, 90.0).unwrap();
+        assert_eq!(fit.most.triangle, 1);
+        assert_eq!(fit.nearest.triangle, 0);
+        assert!(fit.most.used > 1.5e-7 && fit.most.used < fit.most.allowance);
+        assert!(fit.holds());
+        // 1e-5° beyond 90° near the origin is more than rounding explains.
+        let bad = [right(0.0, 1e-5)];
+        assert!(!angle_fit(bad.iter().copied().enumerate(), 30.0, 90.0)
+            .unwrap()
+            .holds());
+    }
+}

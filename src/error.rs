@@ -42,7 +42,7 @@ pub enum InputError {
     Range { detail: String },
     /// Points `first` and `second` (0-based), `distance` apart, are too close together for
     /// their coordinates: a mesh of them would use a rounding allowance of `needed` degrees
-    /// (infinite: more hexagon levels than the lattice has), more than the `allowed`
+    /// (infinite: more levels than the mesher's lattice has), more than the `allowed`
     /// (`--max-rounding`; README "Checks").
     Rounding {
         first: usize,
@@ -51,6 +51,9 @@ pub enum InputError {
         needed: f64,
         allowed: f64,
     },
+    /// Point `index` (0-based) lies only `distance` inside the bounding hexagon's edge, too
+    /// close for the mesher's lattice to put triangles between them in f64.
+    NearBoundary { index: usize, distance: f64 },
 }
 
 impl InputError {
@@ -124,6 +127,12 @@ impl InputError {
                 point[1]
             ),
             InputError::Range { detail } => detail.clone(),
+            InputError::NearBoundary { index, distance } => format!(
+                "point {} lies {distance:e} inside the bounding hexagon's edge, too close for \
+                 f64 at its coordinates: meshing between them needs more levels than the \
+                 mesher's lattice has",
+                n(index)
+            ),
             InputError::Rounding {
                 first: a,
                 second: b,
@@ -137,10 +146,7 @@ impl InputError {
                          {needed:.3e}°, more than the {allowed}° allowed (--max-rounding)"
                     )
                 } else {
-                    format!(
-                        "they need more than {} levels of hexagons",
-                        crate::hex::lattice::MAX_LEVEL
-                    )
+                    "meshing them needs more levels than the mesher's lattice has".to_string()
                 };
                 format!(
                     "points {} and {} are {distance:e} apart, too close together for their \

@@ -459,10 +459,12 @@ impl Hexagon {
             ..Hexagon::with_inradius(center, base * (1.0 + 1e-9))
         };
         // Rounding can leave a point on the boundary; a few relative 1e-9 steps settle it.
-        // Non-finite points (which `Pslg::check` refuses) are never inside: skip them rather
-        // than loop.
+        // Where the points lie far closer together than their coordinates' ulps allow
+        // (two points 1e-11 of their coordinates apart), 1e-9 of the radius is below an ulp:
+        // after 64 steps the step doubles until the corners move. Non-finite points (which
+        // `Pslg::check` refuses) are never inside: skip them rather than loop.
         let finite = |p: &&Point| p[0].is_finite() && p[1].is_finite();
-        for _ in 0..64 {
+        for step in 0..128 {
             if points
                 .iter()
                 .filter(finite)
@@ -470,7 +472,7 @@ impl Hexagon {
             {
                 break;
             }
-            hex.circumradius *= 1.0 + 1e-9;
+            hex.circumradius *= 1.0 + 1e-9 * 2f64.powi((step - 63).max(0));
         }
         hex
     }
@@ -639,6 +641,23 @@ mod tests {
         assert!(pts.iter().all(|&p| hex.contains_strictly(p)));
         let (_, r) = min_enclosing_circle(&pts);
         assert!((hex.inradius() - r).abs() <= r * 1e-8);
+    }
+
+    #[test]
+    fn a_pair_far_closer_than_its_coordinates_ulps_allow_still_gets_a_fitted_hexagon() {
+        // Found by the near-duplicates fuzz family at 1e-11 of the coordinates: 1e-9 of the
+        // radius was below an ulp, and 64 such steps left the points on the boundary.
+        for a in [0.0f64, 0.7, 1.9, 3.0] {
+            let p = [0.849_768_232_370_818_4, 0.612_5];
+            let q = [p[0] + 5e-12 * a.cos(), p[1] + 5e-12 * a.sin()];
+            for hex in [Hexagon::fitted(&[p, q]), Hexagon::aligned(&[p, q])] {
+                assert!(
+                    hex.contains_strictly(p) && hex.contains_strictly(q),
+                    "{hex:?}"
+                );
+                assert!(hex.circumradius < 1e-10, "{hex:?}");
+            }
+        }
     }
 
     /// The direction at 30° (centre to the neighbour across the upper-right edge) turned.

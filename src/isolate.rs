@@ -14,6 +14,7 @@
 //!            u64:nv (f64, f64)×nv u64:nt (u32, u32, u32)×nt
 //!          | 1u8 str:mesher str:message
 //!          | 2u8 u64:first u64:second f64:distance f64:needed f64:allowed  (InputError::Rounding)
+//!          | 3u8 u64:index f64:distance                                    (InputError::NearBoundary)
 //! opt<T>   = 0u8 | 1u8 T;  str = u32:len utf-8 bytes
 //!
 //! The answer is a trailer at the very end of stdout, and the child flushes C's stdio
@@ -267,6 +268,14 @@ pub fn child_main() -> ExitCode {
             for v in [distance, needed, allowed] {
                 put_f64(&mut payload, v);
             }
+        }
+        Err(Error::Input {
+            problem: InputError::NearBoundary { index, distance },
+            ..
+        }) => {
+            payload.push(3);
+            put_u64(&mut payload, index as u64);
+            put_f64(&mut payload, distance);
         }
         Err(e) => {
             let (mesher, message) = match e {
@@ -595,6 +604,12 @@ fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
                 needed,
                 allowed,
             }));
+        }
+        3 => {
+            let index = usize::try_from(r.u64()?).unwrap_or(usize::MAX);
+            let distance = r.f64()?;
+            r.finish()?;
+            return Err(Error::input(InputError::NearBoundary { index, distance }));
         }
         b => return Err(r.bad(&format!("status byte {b}"))),
     }

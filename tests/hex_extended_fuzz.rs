@@ -112,9 +112,11 @@ fn explore_hex_fuzz_cases() {
 }
 
 /// A thousand seeded cases of all ten families (seed 20261123, at most 20 points each, so
-/// that the test build takes about fifteen seconds) meet every Sec. 6 bound or are refused as
-/// too close for f64. Measured: 120 refused (88 near-duplicates, 31 translated, 1 clustered)
-/// and 880 meshed, a ratio of refused to meshed of 0.14.
+/// that the test build takes about fifteen seconds), among them a hundred each of projected
+/// map coordinates, near-duplicates down to 1e-11 of their coordinates and sets translated to
+/// 1e7, meet every Sec. 6 bound up to the rounding allowance or are refused as too close for
+/// f64. Measured: 1 refused (a near-duplicate pair), 999 meshed; under the old fixed 1e-6°
+/// slack 120 of the nine families' thousand were refused.
 #[test]
 fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
     let t = Instant::now();
@@ -136,10 +138,5 @@ fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
     );
     assert!(s.worst_edge_over_d_min >= 7f64.sqrt() / (12.0 * 3f64.sqrt()));
     assert_eq!(s.max_delaunay_violations, 0);
-    let meshed = s.cases - s.refused;
-    assert!(
-        s.refused * 5 < meshed,
-        "{} refused, {meshed} meshed",
-        s.refused
-    );
+    assert!(s.refused <= 5, "{} refused", s.refused);
 }

@@ -42,10 +42,11 @@
 //!   search runs again, before anything is subdivided.
 //! - Precision (README "Checks"): the self-check accepts an angle beyond the bounds by what
 //!   rounding of its corners explains (`breaks_bounds`), and leaves a pair that only rounding
-//!   made non-Delaunay to be flipped once the mesh is done (`settle_rounding`). Where
-//!   rounding alone may move an angle by more than `--max-rounding`, a rejected triangle may
-//!   be rounding's doing, and subdividing it only goes deeper (one set took 358 such splits,
-//!   to 0.035·d_min), so there the input is refused, naming its two closest points.
+//!   made non-Delaunay to be flipped once the mesh is done (`settle_rounding`). Before
+//!   that, rejected triangles that were rounding's doing were subdivided below the precision
+//!   level (one set took 358 such splits, to 0.035·d_min); now a rejection is a real defect,
+//!   subdivided at any level up to the hierarchy's guard (`ROUNDING_GUARD`), and the finished
+//!   mesh is refused, naming its two closest points, if it uses more than `--max-rounding`.
 //! - Sec. 6.1 admits that the bounds were checked on "almost all configurations". As a last
 //!   rule, the finished dual is verified (angles, exact empty-circle test) and the coarsest
 //!   hexagon of each offending triangle is subdivided, and the rules run again. The count of such
@@ -83,7 +84,7 @@
 
 use std::time::Instant;
 
-use crate::error::{Error, InputError, Result};
+use crate::error::{Error, Result};
 use crate::geom::{incircle, orient2d, Point};
 use crate::hex::blossom;
 use crate::hex::classify::{
@@ -98,7 +99,7 @@ use crate::hex::region::{full_leaves_in, Region, REACH};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
-use crate::quality::rounding;
+use crate::quality::rounding::{self, AngleWindow};
 
 /// The smallest angle of the extended refinement, atan(5/(3√3)), in degrees.
 pub fn min_angle_bound() -> f64 {
@@ -114,7 +115,7 @@ const SELF_CHECK_SLACK: f64 = 1e-7;
 /// floor): a configuration the rules must fix, not rounding's doing. Where rounding is a
 /// few ulps of unit coordinates this is the plain slack; at coordinates far larger than the
 /// hexagons (a set translated to 1e7) it grows with the allowance the checks grant.
-fn breaks_bounds(t: &[Point; 3]) -> bool {
+pub(crate) fn breaks_bounds(t: &[Point; 3]) -> bool {
     (0..3).any(|m| {
         let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
         let beyond = rounding::beyond(angle_deg(a, b, c), min_angle_bound(), 90.0);
@@ -143,6 +144,9 @@ pub struct ExtendedStats {
     pub mc3_rejected: u64,
     /// Contested ring cells (fixed for one point, moved for another) moved after all.
     pub ring_flips: u64,
+    /// Times the self-check let a pair of triangles pass that only rounding made
+    /// non-Delaunay (`rounding_made`), to be flipped by `settle_rounding`.
+    pub rounding_pairs: u64,
     /// Rounds of rules-then-verification.
     pub rounds: u64,
     /// Triangles the self-check examined, over all rounds (the whole dual once, then only
@@ -205,8 +209,12 @@ impl Mesher for Hex {
             ));
         }
         if out.stop.is_none() {
-            settle_rounding(&mut out.mesh, &input.points, params.max_rounding_deg())
-                .map_err(Error::input)?;
+            settle_rounding(
+                &mut out.mesh,
+                &input.points,
+                out.stats.rounding_pairs,
+                params.max_rounding_deg(),
+            )?;
         }
         Ok(MeshRun {
             mesh: out.mesh,
@@ -857,7 +865,7 @@ pub(crate) fn extend_and_verify(
                     *k = owner;
                 }
             }
-            let mut bad = offending_leaves(h, &mesh, &keys);
+            let mut bad = offending_leaves(h, &mesh, &keys, &mut stats.rounding_pairs);
             stats.mc3_rejected += bad
                 .iter()
                 .filter(|b| b.vertices.iter().any(|v| patch.chain_cells.contains(v)))
@@ -895,7 +903,7 @@ pub(crate) fn extend_and_verify(
                 if moved.count > 0 {
                     stats.polished += moved.count;
                     record_moves(&mut state.placed, moved, &mesh, &keys);
-                    bad = offending_leaves(h, &mesh, &keys);
+                    bad = offending_leaves(h, &mesh, &keys, &mut stats.rounding_pairs);
                 }
                 if !bad.is_empty() {
                     if full {
@@ -983,12 +991,9 @@ pub(crate) fn extend_and_verify(
         let mut bad: Vec<Key> = bad.into_iter().map(|b| b.coarsest).collect();
         bad.sort();
         bad.dedup();
-        // Where rounding alone may move an angle by more than the mesh may use, a rejected
-        // triangle cannot be told from rounding's doing, and subdividing it only goes deeper
-        // (one set took 358 such splits, to 0.035·d_min): the input is refused instead.
-        if let Some(&deep) = bad.iter().find(|&&k| h.rounding_at(k) > h.max_rounding()) {
-            return Err(Stop::Precision(h.too_fine(deep, h.rounding_at(deep))));
-        }
+        // A rejected triangle breaks a bound by more than rounding explains (`breaks_bounds`),
+        // so subdividing is the repair at any level; the hierarchy's guard (`check_budget`)
+        // stops descents that rounding would spoil.
         h.log.clear();
         for key in bad {
             let before = h.steps;
@@ -1251,7 +1256,7 @@ fn spread_moved_triangle(h: &Hierarchy, key: Key, class: Class, strip: FinStrip)
             Some((n, moved_centre(h, n, c, s)?))
         })
         .collect();
-    let filter = AngleFilter::new();
+    let filter = angle_filter();
     for d in 0..6 {
         let (Some((a, pa)), Some((b, pb))) = (near[d], near[(d + 1) % 6]) else {
             continue;
@@ -1352,42 +1357,10 @@ fn angle_margin(t: [Point; 3]) -> f64 {
     (lo - min_angle_bound()).min(90.0 - hi)
 }
 
-/// A cheap test that every angle of `t` lies clearly inside [α − slack, 90° + slack] (the
-/// self-check's bounds), without `atan2`: `false` means "not clearly", and the caller then
-/// measures the angles as before, so every decision is the one the measured angles give.
-/// At a corner with edge vectors u, v the angle is atan2(|u×v|, u·v): when u·v > 0 it is
-/// clearly ≥ α − slack if |u×v| ≥ (u·v)·tan(α − slack)·(1 + 1e-12), and below 90°; when
-/// u·v ≤ 0 it is clearly ≤ 90° + slack if −u·v ≤ |u×v|·tan(slack)·(1 − 1e-5). The guard
-/// factors are far wider than the rounding of `atan2` and of the degree conversion (below
-/// 1e-14°), and far narrower than the bounds' own slack.
-#[derive(Debug, Clone, Copy)]
-struct AngleFilter {
-    tan_lo: f64,
-    tan_slack: f64,
-}
-
-impl AngleFilter {
-    fn new() -> AngleFilter {
-        AngleFilter {
-            tan_lo: (min_angle_bound() - SELF_CHECK_SLACK).to_radians().tan() * (1.0 + 1e-12),
-            tan_slack: SELF_CHECK_SLACK.to_radians().tan() * (1.0 - 1e-5),
-        }
-    }
-
-    fn clearly_within(&self, t: &[Point; 3]) -> bool {
-        (0..3).all(|m| {
-            let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
-            let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
-            let (vx, vy) = (c[0] - a[0], c[1] - a[1]);
-            let cross = (ux * vy - uy * vx).abs();
-            let dot = ux * vx + uy * vy;
-            if dot > 0.0 {
-                cross >= dot * self.tan_lo
-            } else {
-                cross > 0.0 && -dot <= cross * self.tan_slack
-            }
-        })
-    }
+/// The cheap test that every angle of a triangle lies clearly inside the self-check's bounds
+/// [α − slack, 90° + slack] (`quality::rounding::AngleWindow`).
+fn angle_filter() -> AngleWindow {
+    AngleWindow::new(min_angle_bound(), 90.0, SELF_CHECK_SLACK)
 }
 
 /// Places the centres of contested ring cells (departure from Sec. 5.4, module docs).
@@ -1468,9 +1441,9 @@ fn settle_contested(
     // Around vertex `v` placed at `p`: how far edges fall short of `l_min`, triangles breaking an angle
     // bound, their summed violation (degrees, negative) and the worst margin.
     // A triangle that is counter-clockwise and whose angles are clearly within the bounds
-    // (`AngleFilter`) has a margin above -slack: it adds nothing to `bad` or `pen`, and
+    // (`angle_filter`) has a margin above -slack: it adds nothing to `bad` or `pen`, and
     // its margin is measured only when `worst` is asked for.
-    let filter = AngleFilter::new();
+    let filter = angle_filter();
     let corners_at = |mesh: &TriMesh, t: usize, v: usize, p: Point| -> [Point; 3] {
         let mut c = mesh.corners(t);
         for (m, &w) in mesh.triangles[t].iter().enumerate() {
@@ -1835,8 +1808,13 @@ struct BadTriangle {
 }
 
 /// The triangles that break the angle bounds or the exact empty-circle test.
-fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTriangle> {
-    let filter = AngleFilter::new();
+fn offending_leaves(
+    h: &Hierarchy,
+    mesh: &TriMesh,
+    keys: &[Key],
+    rounding_pairs: &mut u64,
+) -> Vec<BadTriangle> {
+    let filter = angle_filter();
     let mut bad_tris: Vec<usize> = Vec::new();
     for t in 0..mesh.triangles.len() {
         let c = mesh.corners(t);
@@ -1850,7 +1828,9 @@ fn offending_leaves(h: &Hierarchy, mesh: &TriMesh, keys: &[Key]) -> Vec<BadTrian
     // A pair that only rounding made non-Delaunay is flipped once the mesh is finished
     // (`settle_rounding`), not refined.
     for (t, u) in delaunay_violations(mesh) {
-        if !rounding_made(mesh, t, u) {
+        if rounding_made(mesh, t, u) {
+            *rounding_pairs += 1;
+        } else {
             bad_tris.push(t);
             bad_tris.push(u);
         }
@@ -1945,14 +1925,18 @@ fn shared_edge(mesh: &TriMesh, t: usize, u: usize) -> Option<[u32; 4]> {
 }
 
 /// True when the exact empty-circle test fails on the pair (t, u) only by what rounding of
-/// their corners explains: the two angles opposite the shared edge sum to at most 180° plus
-/// the self-check's slack and their rounding allowances (less the floor). Real arithmetic
-/// puts such a pair on a circle (the cocircular quadruples of Sec. 6.4), or the flip makes
-/// it Delaunay.
+/// their corners explains, and the pair can be flipped (`flipped`): the two angles opposite
+/// the shared edge sum to at most 180° plus the self-check's slack and their rounding
+/// allowances (less the floor). Real arithmetic puts such a pair on a circle (the cocircular
+/// quadruples of Sec. 6.4); the flip makes it Delaunay. A pair whose flip would break a
+/// bound is blamed and refined, as any other.
 fn rounding_made(mesh: &TriMesh, t: usize, u: usize) -> bool {
     let Some([p, q, w1, w2]) = shared_edge(mesh, t, u) else {
         return false;
     };
+    if flipped(mesh, [p, q, w1, w2]).is_none() {
+        return false;
+    }
     let v = |i: u32| mesh.vertices[i as usize];
     let (p, q, w1, w2) = (v(p), v(q), v(w1), v(w2));
     let excess = angle_deg(w1, p, q) + angle_deg(w2, q, p) - 180.0;
@@ -1964,73 +1948,71 @@ fn rounding_made(mesh: &TriMesh, t: usize, u: usize) -> bool {
                 - 2.0 * rounding::ANGLE_FLOOR_DEG
 }
 
+/// The two triangles of the other diagonal of the quadrilateral p, w2, q, w1 of a shared edge
+/// (`shared_edge`), when both are counter-clockwise and keep the angle bounds within the
+/// self-check's slack (`breaks_bounds`).
+fn flipped(mesh: &TriMesh, [p, q, w1, w2]: [u32; 4]) -> Option<[[u32; 3]; 2]> {
+    let new = [[p, w2, w1], [w2, q, w1]];
+    let corners = new.map(|tri| tri.map(|i| mesh.vertices[i as usize]));
+    corners
+        .iter()
+        .all(|c| orient2d(c[0], c[1], c[2]) > 0.0 && !breaks_bounds(c))
+        .then_some(new)
+}
+
 /// Rounds of flips `settle_rounding` makes before it gives up.
 const FLIP_ROUNDS: usize = 64;
 
 /// Makes a finished mesh exactly Delaunay where rounding alone spoiled it (Sec. 6.4; README
-/// "Checks"): each pair the exact empty-circle test rejects, which the self-check let pass
-/// as rounding's doing (`rounding_made`), is flipped to its other diagonal when both new
-/// triangles keep the angle bounds within the self-check's slack (`breaks_bounds`); flips
-/// repeat until none is needed. Then the mesh is refused, naming the two input points near
-/// the worst angle, when an angle uses more rounding allowance than `max_rounding` degrees.
-/// A pair that cannot be flipped is refused the same way: no mesh with a non-Delaunay edge
-/// is handed out.
+/// "Checks"), when the self-check let such pairs pass (`rounding_pairs`, counted by
+/// `offending_leaves`; with none there is nothing to flip): each pair the exact empty-circle
+/// test rejects is flipped to its other diagonal (`flipped`: the self-check let it pass only
+/// when that keeps the bounds); flips repeat until none is needed. A pair left over is a
+/// defect of the mesher, reported as such: no mesh with a non-Delaunay edge is handed out.
+/// Then the angles are held to `max_rounding` (`quality::rounding::check_angles`).
 pub fn settle_rounding(
     mesh: &mut TriMesh,
     points: &[Point],
+    rounding_pairs: u64,
     max_rounding: f64,
-) -> std::result::Result<(), InputError> {
+) -> Result<()> {
+    if rounding_pairs > 0 {
+        flip_rounding_pairs(mesh);
+        if let Some(&(t, u)) = delaunay_violations(mesh).first() {
+            return Err(Error::mesher(
+                "hex",
+                format!(
+                    "internal error: triangles {t} and {u} are not Delaunay after the flips of \
+                     the pairs rounding made non-Delaunay"
+                ),
+            ));
+        }
+    }
+    rounding::check_angles(mesh, points, (min_angle_bound(), 90.0), max_rounding, "hex")
+}
+
+/// The flips of `settle_rounding`, at most `FLIP_ROUNDS` rounds of them.
+fn flip_rounding_pairs(mesh: &mut TriMesh) {
     for _ in 0..FLIP_ROUNDS {
         let pairs = delaunay_violations(mesh);
-        if pairs.is_empty() {
-            break;
-        }
         let mut touched = vec![false; mesh.triangles.len()];
-        let mut flipped = false;
+        let mut any = false;
         for (t, u) in pairs {
             if touched[t] || touched[u] {
                 continue;
             }
-            let Some([p, q, w1, w2]) = shared_edge(mesh, t, u) else {
-                continue;
-            };
-            let new = [[p, w2, w1], [w2, q, w1]];
-            let corners = new.map(|tri| tri.map(|i| mesh.vertices[i as usize]));
-            if corners
-                .iter()
-                .all(|c| orient2d(c[0], c[1], c[2]) > 0.0 && !breaks_bounds(c))
-            {
+            if let Some(new) = shared_edge(mesh, t, u).and_then(|e| flipped(mesh, e)) {
                 mesh.triangles[t] = new[0];
                 mesh.triangles[u] = new[1];
                 touched[t] = true;
                 touched[u] = true;
-                flipped = true;
+                any = true;
             }
         }
-        if !flipped {
-            break;
+        if !any {
+            return;
         }
     }
-    if let Some(&(t, _)) = delaunay_violations(mesh).first() {
-        return Err(rounding::refusal_near(
-            points,
-            mesh.corners(t),
-            f64::INFINITY,
-            max_rounding,
-        ));
-    }
-    let tris = (0..mesh.triangles.len()).map(|t| (t, mesh.corners(t)));
-    if let Some(fit) = rounding::angle_fit(tris, min_angle_bound(), 90.0) {
-        if fit.most.used > max_rounding {
-            return Err(rounding::refusal_near(
-                points,
-                mesh.corners(fit.most.triangle),
-                fit.most.used,
-                max_rounding,
-            ));
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

@@ -22,8 +22,8 @@ pub struct FuzzSummary {
     pub mesher: String,
     pub seed: u64,
     pub cases: u64,
-    /// Cases refused as too close for f64 at their coordinates (`InputError::Rounding`, or
-    /// `InputError::Range`).
+    /// Cases refused as too close for f64 at their coordinates (`InputError::Rounding`,
+    /// `NearBoundary` or `Range`).
     pub refused: u64,
     /// Meshes by the largest rounding allowance one of their angles uses (degrees beyond the
     /// promised bounds, `quality::rounding`), in the bins of `ROUNDING_BINS`.
@@ -87,8 +87,9 @@ pub struct FuzzFailure {
 }
 
 /// The families of generated point sets, in the order cases cycle through them.
-/// The first seven are the original families, whose point sets are generated exactly as
-/// before; the families appended later only renumber the cases.
+/// The first seven are the original families, whose point sets are generated as before but
+/// for near-duplicates, which reach 1e-11 of their coordinates apart (they stopped at 1e-9);
+/// the families appended later only renumber the cases.
 pub const FAMILIES: [&str; 10] = [
     "uniform",
     "clustered",
@@ -107,6 +108,7 @@ pub fn angle_bounds(mesher: &str) -> Option<(f64, f64)> {
     match mesher {
         "hex-simple" => Some((30.0, 120.0)),
         "hex" => Some(((5.0 / (3.0 * 3f64.sqrt())).atan().to_degrees(), 90.0)),
+        "rhomb" => Some((30.0, 90.0)),
         _ => None,
     }
 }
@@ -219,7 +221,10 @@ pub fn fuzz_campaign_sized(
                     summary.max_triangles = summary.max_triangles.max(run.mesh.triangles.len());
                 }),
             Err(Error::Input {
-                problem: InputError::Range { .. } | InputError::Rounding { .. },
+                problem:
+                    InputError::Range { .. }
+                    | InputError::Rounding { .. }
+                    | InputError::NearBoundary { .. },
                 ..
             }) => {
                 summary.refused += 1;
@@ -314,7 +319,8 @@ fn sized_family_case(seed: u64, case: u64, family: &str, max_points: usize) -> P
             let base: Vec<Point> = (0..n.div_ceil(2)).map(|_| unit(&mut rng)).collect();
             let mut v = Vec::new();
             for p in base {
-                let gap = 10f64.powf(-rng.random_range(2.0..9.0));
+                // From 1e-2 down to 1e-11 of the point's own coordinates.
+                let gap = p[0].max(p[1]) * 10f64.powf(-rng.random_range(2.0..11.0));
                 let angle = rng.random::<f64>() * std::f64::consts::TAU;
                 v.push(p);
                 v.push([p[0] + gap * angle.cos(), p[1] + gap * angle.sin()]);

@@ -85,7 +85,7 @@ use crate::error::{Error, Result};
 use crate::geom::{dist, incircle, min_enclosing_circle, orient2d, Hexagon, Point};
 use crate::hex::classify::{fin_mask, rings};
 use crate::hex::dual::{self, Placement};
-use crate::hex::extended::{around, extended_actions, min_angle_bound, relocations};
+use crate::hex::extended::{around, extended_actions, relocations};
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeySet};
 use crate::hex::refine::{drain, is_fin, refine_simple};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
@@ -101,9 +101,6 @@ pub const MAX_ROUNDS: u64 = 6;
 /// (Sec. 7.2), so a configuration that subdivision does not repair would grow the mesh
 /// geometrically until memory runs out.
 pub const MAX_GROWTH: usize = 8;
-
-/// Slack of the interior self-check, as in the extended refinement's.
-const SELF_CHECK_SLACK: f64 = 1e-7;
 
 const NAME: &str = "hex";
 
@@ -975,14 +972,11 @@ fn grow_cavity(
     }
 }
 
-/// True when the triangle abc breaks the Sec. 6 angle bounds (with the self-check's slack).
+/// True when the triangle abc breaks the Sec. 6 angle bounds by more than the extended
+/// refinement's self-check allows (its slack and the rounding of the corners,
+/// `extended::breaks_bounds`).
 fn breaks_angle_bounds(c: [Point; 3]) -> bool {
-    let lo = min_angle_bound() - SELF_CHECK_SLACK;
-    let hi = 90.0 + SELF_CHECK_SLACK;
-    (0..3).any(|m| {
-        let a = crate::quality::angle_at(c[(m + 2) % 3], c[m], c[(m + 1) % 3]);
-        a < lo || a > hi
-    })
+    crate::hex::extended::breaks_bounds(&c)
 }
 
 /// A cavity triangle with no corner on a segment counts as interior and must keep the Sec. 6
@@ -1133,15 +1127,9 @@ fn interior_offenders(b: &Built) -> Vec<usize> {
         .iter()
         .map(|t| t.iter().all(|&v| !b.on_segment[v as usize]))
         .collect();
-    let lo = min_angle_bound() - SELF_CHECK_SLACK;
-    let hi = 90.0 + SELF_CHECK_SLACK;
     let mut bad: Vec<usize> = Vec::new();
     for (t, _) in interior.iter().enumerate().filter(|(_, &i)| i) {
-        let c = mesh.corners(t);
-        if (0..3).any(|m| {
-            let a = crate::quality::angle_at(c[(m + 2) % 3], c[m], c[(m + 1) % 3]);
-            a < lo || a > hi
-        }) {
+        if breaks_angle_bounds(mesh.corners(t)) {
             bad.push(t);
         }
     }

@@ -348,11 +348,6 @@ impl Hierarchy {
         self.max_rounding = degrees;
     }
 
-    /// The largest rounding allowance a finished mesh may use, in degrees.
-    pub fn max_rounding(&self) -> f64 {
-        self.max_rounding
-    }
-
     /// How far rounding may move an angle of the dual triangles between the hexagons of
     /// level `k` around `key` (degrees): every vertex within a few radii of the hexagon's
     /// centre c moves by at most δ = 2^-50·(max(|cx|, |cy|) + 2·r_k), and the dual's edges
@@ -646,6 +641,6 @@ impl Hierarchy {
 /// How many times the largest allowed rounding (`Hierarchy::set_max_rounding`) the worst case
 /// of `Hierarchy::rounding_at` may reach before refinement stops. The worst case adds up
 /// every vertex's largest move in the worst direction; the angles of a finished mesh, which
-/// decide (`quality::rounding::refusal`), move far less, so the guard only stops descents
+/// decide (`quality::rounding::check_angles`), move far less, so the guard only stops descents
 /// that could not end in a mesh.
 pub const ROUNDING_GUARD: f64 = 64.0;

@@ -238,9 +238,9 @@ impl Source {
                 problem,
                 first_index: base,
             },
-            InputError::NonFinite { index, .. } | InputError::OutsideHexagon { index, .. } => {
-                at(&self.node_path, self.point_line(index))
-            }
+            InputError::NonFinite { index, .. }
+            | InputError::OutsideHexagon { index, .. }
+            | InputError::NearBoundary { index, .. } => at(&self.node_path, self.point_line(index)),
             InputError::Duplicate {
                 first,
                 second,

@@ -161,7 +161,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         // A figure with its limit: it fails when some triangle uses more than its allowance
         // (`nearest`, the one nearest to breaking it); `most` is the largest allowance used.
         let mut bound = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>| {
-            let failed = fit.is_some_and(|f| f.nearest.used > f.nearest.allowance);
+            let failed = fit.is_some_and(|f| !f.holds());
             checks.push(Check {
                 what: what.to_string(),
                 value,

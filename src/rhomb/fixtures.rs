@@ -67,3 +67,26 @@ fn lone_near_duplicate_pair_meshes_within_its_rounding_allowance() {
     ]);
     within_allowance_or_refused(&input, 1e-6);
 }
+
+/// Fuzz family "lattice" (seed 20261123, case 26): a corner of a level-5 hexagon on the unit
+/// hexagon's edge, which rounding puts 7e-18 inside it. The rhomb windows never fit inside
+/// the hexagon there, and the tree reached its deepest level; that is a refusal naming the
+/// point (it was a mesher error blaming "points too close together", though no two are).
+#[test]
+fn a_point_rounding_left_just_inside_the_hexagon_edge_is_refused_by_name() {
+    let input = Pslg {
+        points: vec![
+            [-0.1875, 0.108_253_175_473_054_82],
+            [0.71875, 0.487_139_289_628_746_7],
+        ],
+        hexagon: Some(crate::geom::Hexagon::new([0.0, 0.0], 1.0)),
+        ..Pslg::default()
+    };
+    match Rhomb.mesh(&input, &Params::default()) {
+        Err(crate::Error::Input {
+            problem: crate::InputError::NearBoundary { index: 1, distance },
+            ..
+        }) => assert!(distance > 0.0 && distance < 1e-16, "{distance}"),
+        other => panic!("expected a refusal naming point 1, got {other:?}"),
+    }
+}

@@ -113,16 +113,11 @@ impl Mesher for Rhomb {
         let (patches, stop_reason) = match outcome {
             Ok(patches) => (patches, None),
             Err(Stop::Budget(reason)) => (Vec::new(), Some(reason)),
-            Err(Stop::Depth) => {
-                return Err(Error::mesher(
-                    NAME,
-                    format!(
-                        "input points too close together for the f64 lattice (more than {} \
-                         levels of rhombs needed)",
-                        lattice::MAX_LEVEL
-                    ),
-                ))
-            }
+            // More levels than the lattice keys hold (`lattice::MAX_LEVEL`). When the closest
+            // pair of the input, or a point and the hexagon's edge, lie within 2^8 rhombs of
+            // that level, they forced it: a refusal naming them. Farther apart, closeness
+            // does not explain the depth, and the error says so.
+            Err(Stop::Depth) => return Err(depth_error(input, &hex, params)),
         };
         let mesh = patterns::triangulate(&tree, &frame, &input.points, &patches);
         rounding_check(&mesh, &input.points, params.max_rounding_deg())?;
@@ -133,6 +128,50 @@ impl Mesher for Rhomb {
             steps: tree.steps,
             elapsed: start.elapsed(),
         })
+    }
+}
+
+/// Why the rhombs reached the lattice's deepest level (`Stop::Depth`): the closest pair of
+/// input points, or the point nearest the hexagon's edge, when either is within 2^8 rhombs of
+/// that level; otherwise a defect of the splitting rules, reported as such.
+fn depth_error(input: &Pslg, hex: &crate::geom::Hexagon, params: &Params) -> Error {
+    let deepest = 2.0 * hex.circumradius * 0.5f64.powi(i32::from(lattice::MAX_LEVEL) - 8);
+    let pair = crate::quality::closest_pair(&input.points);
+    let corners = hex.corners();
+    let edge = |p: crate::geom::Point| {
+        (0..6)
+            .map(|k| {
+                let (a, b) = (corners[k], corners[(k + 1) % 6]);
+                crate::geom::orient2d(a, b, p) / crate::geom::dist(a, b)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let nearest_edge = (0..input.points.len())
+        .map(|i| (edge(input.points[i]), i))
+        .min_by(|a, b| a.0.total_cmp(&b.0));
+    match (pair, nearest_edge) {
+        (_, Some((distance, index)))
+            if distance <= deepest && pair.is_none_or(|c| distance <= c.distance) =>
+        {
+            Error::input(crate::error::InputError::NearBoundary { index, distance })
+        }
+        (Some(c), _) if c.distance <= deepest => Error::input(crate::error::InputError::Rounding {
+            first: c.first,
+            second: c.second,
+            distance: c.distance,
+            needed: f64::INFINITY,
+            allowed: params.max_rounding_deg(),
+        }),
+        _ => Error::mesher(
+            NAME,
+            format!(
+                "the rhombs were split to the lattice's deepest level ({}) although no two \
+                 input points, and no point and the hexagon's edge, are closer than {:e}: a \
+                 configuration the crowdedness rules do not settle",
+                lattice::MAX_LEVEL,
+                deepest
+            ),
+        ),
     }
 }
 

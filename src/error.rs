@@ -140,7 +140,9 @@ impl InputError {
                 needed,
                 allowed,
             } => {
-                let need = if needed.is_finite() {
+                let need = if *needed >= 180.0 && needed.is_finite() {
+                    "rounding to f64 alone could turn their triangles over".to_string()
+                } else if needed.is_finite() {
                     format!(
                         "rounding to f64 would move an angle of their mesh by up to \
                          {needed:.3e}°, more than the {allowed}° allowed (--max-rounding)"

@@ -445,16 +445,30 @@ mod tests {
     }
 
     #[test]
-    fn points_one_ulp_apart_have_no_representable_fitted_hexagon() {
-        // The minimum enclosing circle has radius 1.1e-16 at coordinate 1: its hexagon's
-        // corners round onto the points themselves.
+    fn points_one_ulp_apart_get_a_fitted_hexagon_and_are_refused_by_name() {
+        // The minimum enclosing circle has radius 1.1e-16 at coordinate 1: steps of 1e-9 of
+        // it do not move the hexagon's corners off the points, the doubling steps do
+        // (`Hexagon::fitted`). A mesh of the pair would need hexagons f64 cannot place: the
+        // meshers refuse it, naming both points.
         let p = Pslg::from_points(vec![[1.0, 1.0], [1.0 + f64::EPSILON, 1.0]]);
-        assert!(matches!(
-            p.check(),
-            Err(InputError::OutsideHexagon { fitted: true, .. })
-        ));
-        let message = p.check().unwrap_err().to_string();
-        assert!(message.contains("too close together"), "{message}");
+        assert_eq!(p.check(), Ok(()));
+        for mesher in ["hex", "hex-simple", "rhomb"] {
+            match crate::registry::mesher(mesher)
+                .expect("registered")
+                .mesh(&p, &crate::Params::default())
+            {
+                Err(crate::Error::Input {
+                    problem:
+                        InputError::Rounding {
+                            first: 0,
+                            second: 1,
+                            ..
+                        },
+                    ..
+                }) => {}
+                other => panic!("{mesher}: expected a refusal naming points 0 and 1: {other:?}"),
+            }
+        }
     }
 
     #[test]

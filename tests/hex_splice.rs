@@ -67,8 +67,11 @@ fn the_spliced_dual_is_the_whole_dual_extracted_again() {
 /// inside the repaired region: the seam is compared only between vertices outside it.
 #[test]
 fn repairs_at_the_boundary_of_the_dual_splice_along_the_inner_seam() {
-    // Numbered when the campaign cycled through the first nine families.
-    for case in [996, 1014, 1360, 1968, 2961, 3920, 4073] {
+    // Numbered when the campaign cycled through the first nine families. Case 4073 (a set
+    // translated to 1e7) left this list with the rounding allowance: the self-check rejected
+    // triangles there that rounding had moved beyond its old fixed 1e-7° slack, and now
+    // accepts them within their allowance, so it needs no repair (no subdivision at all).
+    for case in [996, 1014, 1360, 1968, 2961, 3920] {
         let family = hexmesh::hex::fuzz::FAMILIES[(case % 9) as usize];
         let input = hexmesh::hex::fuzz::generate_family_case(20261123, case, family);
         assert!(

@@ -352,12 +352,32 @@ fn a_point_outside_the_given_hexagon_is_refused_at_its_line() {
     assert!(text.contains("point 2 (5.0, 5.0)"), "{text}");
 }
 
+/// Two points one ulp apart: once refused on reading (their fitted hexagon rounded onto them),
+/// they now get a fitted hexagon (`Hexagon::fitted` grows it until its corners move), and
+/// `hexmesh mesh` refuses them, naming both points by their lines.
 #[test]
-fn points_too_close_for_their_fitted_hexagon_are_refused_at_a_line() {
-    let (_, line, problem) = input_error("points_one_ulp_apart.node");
-    assert!(
-        matches!(problem, InputError::OutsideHexagon { fitted: true, .. }),
-        "{problem:?}"
-    );
-    assert!(matches!(line, Some(4 | 5)), "{line:?}");
+fn points_one_ulp_apart_are_refused_by_the_mesher_at_their_lines() {
+    let path = fixture("points_one_ulp_apart.node");
+    assert!(read_input(&path).is_ok());
+    let dir = std::env::temp_dir().join(format!("hexmesh-ulp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    for mesher in ["hex", "hex-simple", "rhomb"] {
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_hexmesh"))
+            .arg("mesh")
+            .arg(&path)
+            .args(["--mesher", mesher, "-o"])
+            .arg(dir.join("out"))
+            .output()
+            .expect("run hexmesh");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{mesher}: {err}");
+        assert!(
+            err.contains("points_one_ulp_apart.node:5:")
+                && err.contains("points 1 and 2")
+                && err.contains("line 4"),
+            "{mesher}: {err}"
+        );
+        assert!(!dir.join("out.node").exists(), "{mesher}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }

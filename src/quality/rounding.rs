@@ -21,13 +21,13 @@
 //!
 //! The allowance *used* by a figure is how far it lies beyond the exact bound (zero inside
 //! it). A check passes when no figure uses more than its allowance; our meshers also refuse
-//! to hand out a mesh any of whose figures uses more than `max_rounding` (default
-//! `DEFAULT_MAX_ROUNDING_DEG`), naming the input points that forced it.
+//! to hand out a mesh any of whose angles uses more than `max_rounding` degrees (default
+//! `DEFAULT_MAX_ROUNDING_DEG`; `check_angles`), naming the input points that forced it.
 //!
 //! Every quantity is a ratio of lengths, computed from differences scaled by an exact power of
 //! two, so it neither overflows nor underflows for finite coordinates up to 1e150.
 
-use crate::geom::Point;
+use crate::geom::{dist_scaled, Point};
 
 /// δv over max(|xv|, |yv|): 2^-50, a few roundings of a coordinate.
 pub const ROUNDING_UNIT: f64 = 1.0 / (1u64 << 50) as f64;
@@ -44,15 +44,10 @@ pub fn delta(p: Point) -> f64 {
     ROUNDING_UNIT * p[0].abs().max(p[1].abs())
 }
 
-/// |q − p| without overflow or underflow (`hypot` scales internally).
-pub fn length(p: Point, q: Point) -> f64 {
-    (q[0] - p[0]).hypot(q[1] - p[1])
-}
-
 /// The allowance of the angle at `a` of triangle (a, b, c), in degrees (module docs).
 pub fn angle_allowance(a: Point, b: Point, c: Point) -> f64 {
     let da = delta(a);
-    let rad = (da + delta(b)) / length(a, b) + (da + delta(c)) / length(a, c);
+    let rad = (da + delta(b)) / dist_scaled(a, b) + (da + delta(c)) / dist_scaled(a, c);
     rad.to_degrees() + ANGLE_FLOOR_DEG
 }
 
@@ -177,13 +172,13 @@ pub fn refusal_near(
     let nearest = |to: Point, skip: Option<usize>| {
         (0..points.len())
             .filter(|&i| Some(i) != skip)
-            .min_by(|&i, &j| length(points[i], to).total_cmp(&length(points[j], to)))
+            .min_by(|&i, &j| dist_scaled(points[i], to).total_cmp(&dist_scaled(points[j], to)))
     };
     let first = nearest(centre, None).unwrap_or(0);
     let second =
         nearest(points.get(first).copied().unwrap_or(centre), Some(first)).unwrap_or(first);
     let distance = match (points.get(first), points.get(second)) {
-        (Some(&a), Some(&b)) => length(a, b),
+        (Some(&a), Some(&b)) => dist_scaled(a, b),
         _ => 0.0,
     };
     crate::error::InputError::Rounding {

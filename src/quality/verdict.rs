@@ -224,7 +224,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                     let fit = fit_of(covered().flat_map(|(t, c)| {
                         (0..3).map(move |e| {
                             let (p, q) = (c[e], c[(e + 1) % 3]);
-                            let ratio = rounding::length(p, q) / d;
+                            let ratio = crate::geom::dist_scaled(p, q) / d;
                             Use {
                                 used: (limit - ratio).max(0.0),
                                 allowance: rounding::edge_allowance(p, q) / d,

@@ -11,9 +11,10 @@ use serde::Serialize;
 
 use crate::error::{Error, Result};
 
-/// Rounding slack of every angle check, in degrees: a minimum-angle bound θ passes down to
-/// θ − 1e-6°, a maximum-angle bound up to θ + 1e-6°, and nothing more (DESIGN.md "Checks").
-pub const ANGLE_SLACK_DEG: f64 = 1e-6;
+/// The floor of every angle's rounding allowance, in degrees (`quality::rounding`, where the
+/// verdict adds what rounding of a triangle's corners explains): the slack of checks that
+/// compare a summary figure with a bound (`maxangle`'s protocol, the PSLG report).
+pub const ANGLE_SLACK_DEG: f64 = super::rounding::ANGLE_FLOOR_DEG;
 
 /// The hex minimum angle atan(5/(3√3)) in degrees (paper Fig. 10: 43.9°).
 pub const HEX_MIN_ANGLE_DEG: f64 = 43.897_886_248_013_98;

@@ -115,8 +115,10 @@ fn explore_hex_fuzz_cases() {
 /// that the test build takes about fifteen seconds), among them a hundred each of projected
 /// map coordinates, near-duplicates down to 1e-11 of their coordinates and sets translated to
 /// 1e7, meet every Sec. 6 bound up to the rounding allowance or are refused as too close for
-/// f64. Measured: 1 refused (a near-duplicate pair), 999 meshed; under the old fixed 1e-6°
-/// slack 120 of the nine families' thousand were refused.
+/// f64, at most one in a thousand (the rounding contract's 0.1 %). Measured: none refused
+/// since the self-check grants the rules only the rounding their placement makes (1 while it
+/// granted the whole allowance; 120 of the nine families' thousand under the old fixed 1e-6°
+/// slack).
 #[test]
 fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
     let t = Instant::now();
@@ -138,5 +140,5 @@ fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
     );
     assert!(s.worst_edge_over_d_min >= 7f64.sqrt() / (12.0 * 3f64.sqrt()));
     assert_eq!(s.max_delaunay_violations, 0);
-    assert!(s.refused <= 5, "{} refused", s.refused);
+    assert!(s.refused <= 1, "{} refused", s.refused);
 }

@@ -34,7 +34,7 @@ fn mesh(name: &str, input: &Pslg) -> TriMesh {
 #[test]
 fn real_coordinates_and_close_pairs_mesh_and_keep_every_bound() {
     let files = fixtures();
-    assert_eq!(files.len(), 6, "{files:?}");
+    assert_eq!(files.len(), 7, "{files:?}");
     for path in &files {
         let input = hexmesh::io::read_input(path).unwrap_or_else(|e| panic!("{e}"));
         for name in ["hex", "hex-simple", "rhomb"] {

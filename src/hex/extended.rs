@@ -111,17 +111,18 @@ pub fn min_angle_bound() -> f64 {
 const SELF_CHECK_SLACK: f64 = 1e-7;
 
 /// True when an angle of `t` lies beyond [α, 90°] by more than the self-check's slack plus
-/// what rounding of its corners explains (the allowance of `quality::rounding` less its
-/// floor): a configuration the rules must fix, not rounding's doing. Where rounding is a
-/// few ulps of unit coordinates this is the plain slack; at coordinates far larger than the
-/// hexagons (a set translated to 1e7) it grows with the allowance the checks grant.
+/// what placing its corners explains (`rounding::placement_allowance`: one rounding of each
+/// coordinate): a configuration the rules must fix, not rounding's doing. Where rounding is
+/// a few ulps of unit coordinates this is the plain slack; at coordinates far larger than the
+/// hexagons (a set translated to 1e7) it grows with the rounding there. It grants a quarter
+/// of what the checks allow: the whole allowance let rules through whose exact angles break
+/// the bound (0.05° below α around a pair 1e-11 of its coordinates apart), and the input
+/// was then refused for the rounding those angles seemed to use.
 pub(crate) fn breaks_bounds(t: &[Point; 3]) -> bool {
     (0..3).any(|m| {
         let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
         let beyond = rounding::beyond(angle_deg(a, b, c), min_angle_bound(), 90.0);
-        beyond > SELF_CHECK_SLACK
-            && beyond
-                > SELF_CHECK_SLACK + rounding::angle_allowance(a, b, c) - rounding::ANGLE_FLOOR_DEG
+        beyond > SELF_CHECK_SLACK + rounding::placement_allowance(a, b, c)
     })
 }
 

@@ -51,6 +51,22 @@ pub fn angle_allowance(a: Point, b: Point, c: Point) -> f64 {
     rad.to_degrees() + ANGLE_FLOOR_DEG
 }
 
+/// What one rounding of each coordinate can move a vertex, over max(|xv|, |yv|): at most
+/// √2·2^-53 < 2^-52. A lattice vertex our meshers place is rounded once from its exact
+/// position (an fma, or an accurate sum for a turned lattice), so it lies within this of it.
+pub const PLACEMENT_UNIT: f64 = f64::EPSILON;
+
+/// How far placing the corners of (a, b, c) by one rounding each can move the angle at `a`,
+/// in degrees: `angle_allowance` with δ = `PLACEMENT_UNIT`·max(|x|, |y|) and no floor, a
+/// quarter of the allowance's rounding part. A mesher's self-check grants its own
+/// construction no more than this: an angle beyond it is a configuration the rules must fix.
+/// Granting the whole allowance there let rules whose exact angles break the bound through
+/// wherever the triangles were small against their coordinates (a pair 1e-11 of its
+/// coordinates apart), and the finished mesh was then refused for rounding it did not make.
+pub fn placement_allowance(a: Point, b: Point, c: Point) -> f64 {
+    (angle_allowance(a, b, c) - ANGLE_FLOOR_DEG) * (PLACEMENT_UNIT / ROUNDING_UNIT)
+}
+
 /// The allowances of the three angles of triangle `t`, corner by corner, in degrees.
 pub fn angle_allowances(t: [Point; 3]) -> [f64; 3] {
     std::array::from_fn(|m| angle_allowance(t[m], t[(m + 1) % 3], t[(m + 2) % 3]))
@@ -236,7 +252,9 @@ const SKIP_SLACK_DEG: f64 = 1e-7;
 /// A finished mesh of one of our meshers (`mesher`) against its angle bounds (lo, hi), with
 /// the rounding allowance: refused, naming the two input points near the worst angle
 /// (`refusal_near`), when an angle lies beyond the bounds by more than `max_rounding`
-/// degrees. An angle beyond its allowance is a defect of the mesher, reported as such.
+/// degrees. An angle beyond its allowance is a defect of the mesher, reported as such even
+/// when it also passes `max_rounding`: rounding cannot explain it, so a refusal blaming the
+/// input's closeness would be a false statement.
 pub fn check_angles(
     mesh: &crate::mesh::TriMesh,
     points: &[Point],
@@ -255,14 +273,6 @@ pub fn check_angles(
     let Some(fit) = angle_fit(tris, lo, hi) else {
         return Ok(());
     };
-    if fit.most.used > max_rounding {
-        return Err(Error::input(refusal_near(
-            points,
-            mesh.corners(fit.most.triangle),
-            fit.most.used,
-            max_rounding,
-        )));
-    }
     if !fit.holds() {
         let n = fit.nearest;
         return Err(Error::mesher(
@@ -273,6 +283,14 @@ pub fn check_angles(
                 n.triangle, n.value, n.allowance
             ),
         ));
+    }
+    if fit.most.used > max_rounding {
+        return Err(Error::input(refusal_near(
+            points,
+            mesh.corners(fit.most.triangle),
+            fit.most.used,
+            max_rounding,
+        )));
     }
     Ok(())
 }
@@ -305,6 +323,25 @@ mod tests {
             let r = radius_ratio_allowance(t, [90.0, 45.0, 45.0], 1.2071);
             assert!(r.is_finite() && r > 0.0, "{s}: {r}");
         }
+    }
+
+    #[test]
+    fn an_angle_beyond_its_allowance_is_a_mesher_defect_even_past_max_rounding() {
+        // 1° below 30° at unit coordinates: far past 0.01°, but rounding explains none of it,
+        // so blaming the input's closeness would be false.
+        let e = 1f64.to_radians();
+        let (c, s) = ((30f64.to_radians() - e).cos(), (30f64.to_radians() - e).sin());
+        let mesh = crate::mesh::TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [c, s]],
+            triangles: vec![[0, 1, 2]],
+        };
+        let err = check_angles(&mesh, &mesh.vertices, (29.0 - 1e-3, 180.0), 0.01, "m");
+        assert!(err.is_ok(), "{err:?}");
+        let err = check_angles(&mesh, &mesh.vertices, (30.0, 180.0), 0.01, "m").unwrap_err();
+        assert!(
+            matches!(err, crate::error::Error::Mesher { .. }),
+            "not a defect: {err}"
+        );
     }
 
     #[test]

@@ -2,10 +2,6 @@
 //! (Shewchuk's adaptive predicates through the `robust` crate), the flat-topped hexagon,
 //! and the minimum enclosing circle (Welzl 1991, "Smallest enclosing disks").
 
-use rand::seq::SliceRandom;
-use rand::SeedableRng;
-use rand_pcg::Pcg64;
-
 /// A point in the plane.
 pub type Point = [f64; 2];
 
@@ -541,7 +537,7 @@ pub fn min_enclosing_circle(points: &[Point]) -> (Point, f64) {
     if pts.is_empty() {
         return ([0.0, 0.0], 0.0);
     }
-    pts.shuffle(&mut Pcg64::seed_from_u64(0x0068_6578_6d65_7368));
+    crate::shuffle::shuffle(&mut pts, 0x0068_6578_6d65_7368);
     let inside = |c: Point, r2: f64, p: Point| dist2(c, p) <= r2 * (1.0 + 1e-12);
     let mut c = pts[0];
     let mut r2 = 0.0;

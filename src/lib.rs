@@ -20,6 +20,7 @@ pub mod refine;
 pub mod registry;
 pub mod report;
 pub mod rhomb;
+mod shuffle;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};

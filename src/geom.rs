@@ -360,6 +360,17 @@ pub fn principal_turn(points: &[Point]) -> Turn {
     }
 }
 
+/// The least margin of a fitted hexagon's inscribed circle over the points' enclosing circle,
+/// over the size of their coordinates (max(|cx|, |cy|) + r): 2^-34, some 2^16 roundings of a
+/// coordinate. The relative 1e-9 alone is below an ulp where the points span far less than
+/// their coordinates (a set 0.1 across at 1e7): a point on the circle then lay a few ulps
+/// inside the hexagon's edge, and the triangles a mesher must fit between the two were too
+/// small for f64 there (fuzz family "translated", case 1525, refused by `rhomb`). With the
+/// margin the point lies at least 2^16 roundings inside, where a triangle spanning the gap
+/// moves by rounding less than 1e-3°. Where the points span more than about 1/17 of their
+/// distance from the origin (every dataset) the relative 1e-9 is the larger and decides.
+pub const FIT_MARGIN: f64 = 1.0 / (1u64 << 34) as f64;
+
 impl Hexagon {
     /// The hexagon whose inscribed circle has radius `inradius`.
     pub fn with_inradius(center: Point, inradius: f64) -> Hexagon {
@@ -428,9 +439,10 @@ impl Hexagon {
         1.5 * 3f64.sqrt() * self.circumradius * self.circumradius
     }
 
-    /// The bounding hexagon DESIGN.md prescribes for a point set: its inscribed circle is the
-    /// minimum enclosing circle of the points, enlarged by a relative 1e-9 (and further, if
-    /// rounding left any point outside a corner test).
+    /// The bounding hexagon of a point set: its inscribed circle is the minimum enclosing
+    /// circle of the points, enlarged by a relative 1e-9 or by `FIT_MARGIN` of the
+    /// coordinates' size, whichever is more (and further, if rounding left any point outside
+    /// a corner test).
     pub fn fitted(points: &[Point]) -> Hexagon {
         Hexagon::fitted_with(points, Turn::NONE)
     }
@@ -442,6 +454,8 @@ impl Hexagon {
     }
 
     fn fitted_with(points: &[Point], turn: Turn) -> Hexagon {
+        // The least margin, FIT_MARGIN of the coordinates, decides only where the points span
+        // less than about 1/17 of their distance from the origin (x ≈ 1e7, extent below 6e5).
         let (center, radius) = min_enclosing_circle(points);
         // A single point (or all points equal) has radius 0: fall back to a unit-size hexagon
         // scaled to the coordinates so that the hexagon is not degenerate.
@@ -450,9 +464,11 @@ impl Hexagon {
         } else {
             center[0].abs().max(center[1].abs()).max(1.0) * 1e-3
         };
+        let scale = center[0].abs().max(center[1].abs()) + base;
+        let inradius = (base * (1.0 + 1e-9)).max(base + FIT_MARGIN * scale);
         let mut hex = Hexagon {
             turn,
-            ..Hexagon::with_inradius(center, base * (1.0 + 1e-9))
+            ..Hexagon::with_inradius(center, inradius)
         };
         // Rounding can leave a point on the boundary; a few relative 1e-9 steps settle it.
         // Where the points lie far closer together than their coordinates' ulps allow

@@ -71,7 +71,11 @@ fn repairs_at_the_boundary_of_the_dual_splice_along_the_inner_seam() {
     // translated to 1e7) left this list with the rounding allowance: the self-check rejected
     // triangles there that rounding had moved beyond its old fixed 1e-7° slack, and now
     // accepts them within their allowance, so it needs no repair (no subdivision at all).
-    for case in [996, 1014, 1360, 1968, 2961, 3920] {
+    // Case 3920 (also translated) left it with the fitted hexagon's least margin
+    // (`geom::FIT_MARGIN`): its hexagon grew from a relative 1e-9 to 2^-34 of the
+    // coordinates, the points near its edge no longer force the refinement there, and the
+    // run needs no repair.
+    for case in [996, 1014, 1360, 1968, 2961] {
         let family = hexmesh::hex::fuzz::FAMILIES[(case % 9) as usize];
         let input = hexmesh::hex::fuzz::generate_family_case(20261123, case, family);
         assert!(

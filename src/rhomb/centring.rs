@@ -21,6 +21,15 @@
 //! one splits p's leaf instead; two patches that share a triangle split both points' leaves.
 //! These replace the corner condition (Sec. 3) and the protection of Sec. 4 step 5, whose
 //! missing Fig. 11 detail leaves the protected area open.
+//!
+//! A rule the paper has no need of: a point that is a lattice vertex on the hexagon's edge bit
+//! for bit (`Frame::boundary_vertex`; the hex lattice of the same hexagon builds its points by
+//! the same formula) lies on the edge in real arithmetic, where no patch fits between it and
+//! the edge, and splitting cannot end. It is given no patch (`Kind::Vertex`): the rhombs
+//! around it are refined to its level so that it is a corner of the quad-tree, and the
+//! triangulation outputs it for that vertex. The mesh is then the lattice's own, every angle
+//! within the rounding allowance of its vertices (fixture
+//! `a_point_rounding_left_just_inside_the_hexagon_edge_is_meshed_as_its_boundary_vertex`).
 
 use std::collections::BTreeSet;
 
@@ -46,6 +55,9 @@ pub enum Kind {
     Moved,
     /// Melted rhombs of side 2l around m, whose centre is moved onto p (Sec. 5.4).
     Melted,
+    /// p is the boundary lattice vertex m bit for bit (`Frame::boundary_vertex`): m is output
+    /// as p, nothing moves. `level` is the coarsest level m has.
+    Vertex,
 }
 
 /// One input point and the patch that carries it.
@@ -67,20 +79,30 @@ impl Patch {
         match self.kind {
             Kind::Moved => 0.5 * (3f64.sqrt() / 2.0 + CENTRED),
             Kind::Melted => 0.5 * 4.0 * (3f64.sqrt() / 2.0 + 1.0 / (2.0 * 3f64.sqrt())),
+            Kind::Vertex => 0.0,
         }
     }
 
     /// Circumradius of the patch's own triangles in level-k steps.
     pub fn radius(&self) -> i64 {
         match self.kind {
+            Kind::Vertex => 0,
             Kind::Moved => 1,
             Kind::Melted => MELTED_RADIUS,
         }
     }
 
     /// The level-k rhombs that must be leaves: a moved vertex's four rhombs; a melted patch's
-    /// rhombs and every rhomb touching it, in a fixed order.
+    /// rhombs and every rhomb touching it, in a fixed order. For a vertex, the four rhombs
+    /// around it, which must be leaves of level k or finer (`centre_points`).
     pub fn zone(&self) -> Vec<Cell> {
+        if self.kind == Kind::Vertex {
+            let (i, j) = self.centre;
+            return [(-1, -1), (0, -1), (-1, 0), (0, 0)]
+                .iter()
+                .map(|&(a, b)| Cell::new(self.level, i + a, j + b))
+                .collect();
+        }
         if self.kind == Kind::Moved {
             let mut cells: Vec<Cell> = self.halves().into_iter().map(|(c, _)| c).collect();
             cells.dedup();
@@ -110,6 +132,9 @@ impl Patch {
     /// The halves (0 lower, 1 upper) of level-k rhombs that lie inside the patch: the triangles
     /// the patch triangulates itself.
     pub fn halves(&self) -> Vec<(Cell, u8)> {
+        if self.kind == Kind::Vertex {
+            return Vec::new();
+        }
         let (mi, mj) = self.centre;
         let r = self.radius();
         let inside = |i: i64, j: i64| hexnorm(i - mi, j - mj) <= r;
@@ -199,6 +224,30 @@ pub fn centre_points(
         let mut to_split: BTreeSet<Cell> = BTreeSet::new();
         let mut patches = Vec::with_capacity(points as usize);
         for p in 0..points {
+            if let Some((level, i, j)) = tree.pin(p) {
+                // A boundary vertex needs no patch, only to be a corner of the quad-tree: the
+                // four level-k rhombs around it are leaves of level k or finer where they have
+                // a half inside the hexagon (so that every leaf half at it has it as a corner,
+                // and a patch reaching it has it on its rim, since patches lie inside).
+                let patch = Patch {
+                    point: p,
+                    level,
+                    centre: (i, j),
+                    kind: Kind::Vertex,
+                };
+                for c in patch.zone() {
+                    if !c.in_root() || !(half_in_hexagon(c, 0) || half_in_hexagon(c, 1)) {
+                        continue;
+                    }
+                    if let Cover::Leaf(l) = tree.cover(c) {
+                        if l.level < level {
+                            to_split.insert(l);
+                        }
+                    }
+                }
+                patches.push(patch);
+                continue;
+            }
             let leaf = tree.locate(p);
             let st = tree.coords(p);
             let k = leaf.level;

@@ -107,6 +107,14 @@ pub fn vertex_in_hexagon(level: u8, i: i64, j: i64) -> bool {
     (0..=n).contains(&i) && (0..=n).contains(&j) && n <= 2 * (i + j) && 2 * (i + j) <= 3 * n
 }
 
+/// Level-k lattice vertex (i, j) on the bounding hexagon's boundary: inside the closed hexagon
+/// and on one of its six lines u = 0, v = 0, u = 2, v = 2, u + v = 1, u + v = 3.
+pub fn vertex_on_boundary(level: u8, i: i64, j: i64) -> bool {
+    let n = 1i64 << level;
+    vertex_in_hexagon(level, i, j)
+        && (i == 0 || j == 0 || i == n || j == n || 2 * (i + j) == n || 2 * (i + j) == 3 * n)
+}
+
 /// The global key of level-k lattice vertex (i, j).
 pub fn key(level: u8, i: i64, j: i64) -> VKey {
     let shift = KEY_BITS - level as u32;
@@ -143,6 +151,34 @@ impl Frame {
         let v = 1.0 + dy / self.h;
         let u = 1.0 + dx / self.hex.circumradius - (v - 1.0) / 2.0;
         [u / 2.0, v / 2.0]
+    }
+
+    /// The boundary lattice vertex whose f64 position (`point`) is `p` itself, at the coarsest
+    /// level it has, if there is one; `st` is `locate(p)`. Rounding `point` can leave such a
+    /// vertex a little inside the hexagon's edge, so that `p` passes the strict containment
+    /// test although in real arithmetic it lies on the edge (the lattice points of the hex
+    /// meshers of the same hexagon are built by the same formula, so bit-identical). Only the
+    /// bit-for-bit equality decides; `st` merely proposes the candidate of each level.
+    pub fn boundary_vertex(&self, p: Point, st: [f64; 2]) -> Option<(u8, i64, i64)> {
+        // A cheap filter first: `locate` errs by a few ulps of 1, far below this.
+        let near = |x: f64, line: f64| (x - line).abs() < 1e-9;
+        let (s, t) = (st[0], st[1]);
+        let near_edge = near(s, 0.0)
+            || near(t, 0.0)
+            || near(s, 1.0)
+            || near(t, 1.0)
+            || near(s + t, 0.5)
+            || near(s + t, 1.5);
+        if !near_edge {
+            return None;
+        }
+        (1..=MAX_LEVEL).find_map(|level| {
+            let n = (1i64 << level) as f64;
+            let (i, j) = ((st[0] * n).round() as i64, (st[1] * n).round() as i64);
+            let q = self.point(key(level, i, j));
+            (vertex_on_boundary(level, i, j) && q[0] == p[0] && q[1] == p[1])
+                .then_some((level, i, j))
+        })
     }
 
     /// The plane coordinates of a lattice vertex. Written as c + R·a, c + h·b with the same h as

@@ -9,7 +9,9 @@
 //! Inputs with segments (paper Sec. 5.1–5.8: moving conditions, border-boxes, polygon corners)
 //! are refused, as are points closer than 2^-48 of the hexagon (the lattice depth) and inputs
 //! whose triangles f64 output would move beyond the bounds by more than `--max-rounding` (see
-//! `rounding_check`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
+//! `rounding_check`). A point that is a lattice vertex of the hexagon's edge bit for bit (on
+//! the edge in real arithmetic, rounding left it just inside) is meshed as that vertex
+//! (`Frame::boundary_vertex`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
 //! one output vertex each). A run stopped by a budget returns the balanced tree's triangulation
 //! without the input points (`complete == false`), which still meets the angle bounds.
 
@@ -83,7 +85,13 @@ impl Mesher for Rhomb {
             ));
         }
         let frame = Frame::new(hex);
-        let coords = input.points.iter().map(|&p| frame.locate(p)).collect();
+        let coords: Vec<[f64; 2]> = input.points.iter().map(|&p| frame.locate(p)).collect();
+        let pins = input
+            .points
+            .iter()
+            .zip(&coords)
+            .map(|(&p, &st)| frame.boundary_vertex(p, st))
+            .collect();
         // max_area in units of the root side 2R squared, and the coarsest level whose
         // equilateral halves (√3/4·side²) respect it.
         let root_side = 2.0 * hex.circumradius;
@@ -104,7 +112,7 @@ impl Mesher for Rhomb {
             }
             level
         });
-        let mut tree = Tree::new(coords, area_level);
+        let mut tree = Tree::new(coords, area_level).with_pins(pins);
         let guard = Guard::new(params.budget);
         let n = input.points.len() as u32;
         let outcome = tree

@@ -52,6 +52,11 @@ pub fn triangulate(tree: &Tree, frame: &Frame, points: &[Point], patches: &[Patc
     if !patches.is_empty() {
         b.vertices.extend_from_slice(points);
     }
+    // A point that is a boundary lattice vertex bit for bit stands for that vertex.
+    for patch in patches.iter().filter(|p| p.kind == Kind::Vertex) {
+        let (i, j) = patch.centre;
+        b.index.insert(key(patch.level, i, j), patch.point);
+    }
     let covered: KeySet<(Cell, u8)> = patches.iter().flat_map(Patch::halves).collect();
     for c in tree.leaves() {
         for half in 0..2u8 {
@@ -64,6 +69,7 @@ pub fn triangulate(tree: &Tree, frame: &Frame, points: &[Point], patches: &[Patc
         match patch.kind {
             Kind::Moved => moved_triangles(&mut b, patch),
             Kind::Melted => melted_triangles(&mut b, patch),
+            Kind::Vertex => {}
         }
     }
     TriMesh {

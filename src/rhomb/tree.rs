@@ -130,6 +130,8 @@ pub struct Tree {
     fresh: Vec<Cell>,
     /// The coarsest level whose equilateral halves respect `Params::max_area`.
     area_level: u8,
+    /// Per point, the boundary lattice vertex it is bit for bit (`Frame::boundary_vertex`).
+    pins: Vec<Option<(u8, i64, i64)>>,
 }
 
 /// The level-k cell index of a root-normalised coordinate, clamped into the root.
@@ -151,7 +153,20 @@ impl Tree {
             steps: 0,
             fresh: vec![Cell::ROOT],
             area_level,
+            pins: Vec::new(),
         }
+    }
+
+    /// Marks the points that are boundary lattice vertices bit for bit (`Frame::
+    /// boundary_vertex`): they are meshed as those vertices, with no patch.
+    pub fn with_pins(mut self, pins: Vec<Option<(u8, i64, i64)>>) -> Tree {
+        self.pins = pins;
+        self
+    }
+
+    /// The boundary lattice vertex point `p` is, if any.
+    pub fn pin(&self, p: u32) -> Option<(u8, i64, i64)> {
+        self.pins.get(p as usize).copied().flatten()
     }
 
     /// The leaves in (level, i, j) order.
@@ -268,30 +283,25 @@ impl Tree {
     }
 
     /// Crowded (Sec. 3): the 5×-window holds two foreign elements. Elements here are the input
-    /// points and the hexagon's edges. Departures, both for point sets only: two hexagon edges
-    /// are not counted, since they are lattice lines and need no separating; a point and an
-    /// edge crowd only the rhomb holding the point. The rhombs between a point and the edge
-    /// need no splitting of their own (the centring patch keeps its triangles inside, Sec. 5.4),
-    /// and splitting them made that band finer than the point's rhomb, which then had to follow:
-    /// edges a 26th of the gap, too short for f64 at a distance from the origin (fixture
-    /// `a_point_near_the_fitted_edge_away_from_the_origin_is_meshed`).
+    /// points only. Departure, for point sets: the hexagon's edges are not counted at all. They
+    /// are lattice lines of every level, so two edges need no separating, and a point needs
+    /// from an edge only that its centring patch lie inside the hexagon, which `centring`
+    /// demands of the patch itself (it splits the point's rhomb until the patch fits: a moved
+    /// vertex fits once the rhomb side l is at most about twice the point's distance δ to the
+    /// edge).
+    /// Counting a point and an edge in one window split until the window, 2.5 sides beyond
+    /// the point's rhomb and up to 5.2 l towards a slanted edge along the long diagonal,
+    /// cleared the edge: l ≈ δ/6, and with the centring split δ/13, a 13th of what the patch
+    /// needs. For a point the fitted hexagon's edge passes closely (its inscribed circle is
+    /// the points' enclosing circle enlarged by a relative 1e-9), those triangles were too
+    /// small for f64 at the coordinates (fixture `a_point_near_the_fitted_edge_is_centred_at_
+    /// the_depth_its_patch_needs`). Earlier the window also counted the rhombs between a point
+    /// and the edge (fixture `a_point_near_the_fitted_edge_away_from_the_origin_is_meshed`).
     fn crowded(&self, c: Cell) -> bool {
         if c.level < MIN_LEVEL.max(self.area_level) {
             return true;
         }
-        let window = match self.leaves.get(&c) {
-            Some(w) => w,
-            None => return false,
-        };
-        match window.as_slice() {
-            [] => false,
-            &[p] => {
-                let [s, t] = self.coords[p as usize];
-                let holds = index_at(s, c.level) == c.i && index_at(t, c.level) == c.j;
-                holds && !window_in_hexagon(c)
-            }
-            _ => true,
-        }
+        self.leaves.get(&c).is_some_and(|window| window.len() >= 2)
     }
 
     /// Sec. 4 step 2: split while a crowded leaf exists. Children of an uncrowded rhomb are
@@ -307,15 +317,6 @@ impl Tree {
         }
         Ok(())
     }
-}
-
-/// The window of `c` lies in the closed hexagon (the hexagon is convex: test its corners).
-fn window_in_hexagon(c: Cell) -> bool {
-    let lo = -WINDOW_HALF;
-    let hi = WINDOW_HALF + 1;
-    [(lo, lo), (hi, lo), (lo, hi), (hi, hi)]
-        .iter()
-        .all(|&(a, b)| super::lattice::vertex_in_hexagon(c.level, c.i + a, c.j + b))
 }
 
 #[cfg(test)]

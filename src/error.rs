@@ -167,6 +167,8 @@ impl fmt::Display for InputError {
     }
 }
 
+impl std::error::Error for InputError {}
+
 /// Everything that can go wrong in hexmesh.
 #[derive(Debug)]
 pub enum Error {

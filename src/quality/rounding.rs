@@ -330,7 +330,10 @@ mod tests {
         // 1° below 30° at unit coordinates: far past 0.01°, but rounding explains none of it,
         // so blaming the input's closeness would be false.
         let e = 1f64.to_radians();
-        let (c, s) = ((30f64.to_radians() - e).cos(), (30f64.to_radians() - e).sin());
+        let (c, s) = (
+            (30f64.to_radians() - e).cos(),
+            (30f64.to_radians() - e).sin(),
+        );
         let mesh = crate::mesh::TriMesh {
             vertices: vec![[0.0, 0.0], [1.0, 0.0], [c, s]],
             triangles: vec![[0, 1, 2]],

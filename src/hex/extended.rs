@@ -94,6 +94,7 @@ use crate::hex::dual::{self, Placement};
 use crate::hex::fuzz::angle_deg;
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyBytes, KeySet};
 use crate::hex::mc3::{self, Patch};
+use crate::hex::parallel::{in_parallel, in_parallel_from, PARALLEL_MIN};
 use crate::hex::refine::{drain, refine_simple};
 use crate::hex::region::{full_leaves_in, Region, REACH};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
@@ -1051,44 +1052,6 @@ pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &KeySet) ->
     acts.sort_unstable_by_key(|a| (a.0.packed(), a.1));
     acts.dedup_by_key(|a| a.0);
     acts
-}
-
-/// Lists of at least this many items are split over threads by `in_parallel`.
-const PARALLEL_MIN: usize = 8192;
-
-/// `f` on consecutive chunks of `items`, one per available thread (at most four) when the
-/// list is long, in order.
-pub(crate) fn in_parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&[T]) -> R + Sync) -> Vec<R> {
-    in_parallel_from(items, PARALLEL_MIN, f)
-}
-
-/// `in_parallel` for lists of at least `min` items (fewer items of more work each).
-pub(crate) fn in_parallel_from<T: Sync, R: Send>(
-    items: &[T],
-    min: usize,
-    f: impl Fn(&[T]) -> R + Sync,
-) -> Vec<R> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
-    if threads < 2 || items.len() < min {
-        return vec![f(items)];
-    }
-    let size = items.len().div_ceil(threads);
-    std::thread::scope(|scope| {
-        let f = &f;
-        let handles: Vec<_> = items
-            .chunks(size)
-            .skip(1)
-            .map(|chunk| scope.spawn(move || f(chunk)))
-            .collect();
-        let mut out = vec![f(&items[..size.min(items.len())])];
-        for handle in handles {
-            match handle.join() {
-                Ok(r) => out.push(r),
-                Err(panic) => std::panic::resume_unwind(panic),
-            }
-        }
-        out
-    })
 }
 
 /// The actions of `extended_actions` for some of the candidates, unsorted.

@@ -147,7 +147,7 @@ fn extract_all_from(
         // Each part's share of the full leaves, if the subtrees share them evenly, with room
         // for an uneven split: reserved but untouched room costs no memory.
         let share = |chunk: usize| (h.full_leaves * chunk).div_ceil(items.len().max(1)) * 5 / 4;
-        crate::hex::extended::in_parallel_from(&items, 2, |chunk| {
+        crate::hex::parallel::in_parallel_from(&items, 2, |chunk| {
             let leaves = share(chunk.len());
             let mut part = Part {
                 index: KeyIndex::with_capacity(leaves),

@@ -5,6 +5,8 @@
 //! `hex-simple` is the simple refinement: every angle in [30°, 120°] (Sec. 4.3).
 //!
 //! - `lattice`: integer keys of hexagons, exact positions, the bounding-hexagon test.
+//! - `keyset`, `keylines`, `fxhash`: containers of lattice keys (ours, not the paper's).
+//! - `parallel`: long lists split over the machine's threads (ours, not the paper's).
 //! - `subdivision`: split, join, balancing, point location (Sec. 3).
 //! - `refine`: refinement rules 1–5 on a work list (Sec. 4.1).
 //! - `blossom`: local coarsening into blossoms (Sec. 5.3).
@@ -18,9 +20,13 @@ pub mod classify;
 pub mod dual;
 pub mod extended;
 pub mod fuzz;
+pub mod fxhash;
 pub mod incremental;
+pub mod keylines;
+pub mod keyset;
 pub mod lattice;
 pub mod mc3;
+pub(crate) mod parallel;
 pub mod picture;
 pub mod pslg;
 pub mod refine;

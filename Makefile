@@ -47,13 +47,14 @@ report: build
 
 lint: deps
 	$(CARGO) fmt --all -- --check
-	$(CARGO) clippy --all-targets -- -D warnings
+	$(CARGO) clippy --workspace --all-targets -- -D warnings
 
 # proptest draws from a fixed seed so that CI is reproducible; explore others with
 # `PROPTEST_RNG_SEED=N make test`, and run long campaigns with `hexmesh fuzz`.
 PROPTEST_RNG_SEED ?= 20261123
 test: deps lint
-	PROPTEST_RNG_SEED=$(PROPTEST_RNG_SEED) HEXMESH_PYTHON=$(abspath $(PYTHON)) $(CARGO) test --all-targets
+	PROPTEST_RNG_SEED=$(PROPTEST_RNG_SEED) HEXMESH_PYTHON=$(abspath $(PYTHON)) $(CARGO) test --workspace --all-targets
+	$(CARGO) test --workspace --doc
 
 bench: deps
 	$(CARGO) bench

@@ -8,8 +8,8 @@ fn main() {
         .next()
         .and_then(|s| s.parse().ok())
         .expect("a case number");
-    let (family, input) = hexmesh::hex::fuzz::generate_case(seed, case);
-    match hexmesh::hex::fuzz::write_failure("hex", seed, case, family, &input) {
+    let (family, input) = hexmesh::fuzz::generate_case(seed, case);
+    match hexmesh::fuzz::write_failure("hex", seed, case, family, &input) {
         Ok(path) => println!("{}", path.display()),
         Err(e) => eprintln!("cannot write the case: {e}"),
     }

@@ -37,7 +37,7 @@ fn main() {
         println!("{name}: {}", digest(&input));
     }
     for case in 0..cases {
-        let (family, input) = hexmesh::hex::fuzz::generate_case(20261123, case);
+        let (family, input) = hexmesh::fuzz::generate_case(20261123, case);
         println!("case {case} {family}: {}", digest(&input));
     }
 }

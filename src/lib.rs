@@ -1,26 +1,29 @@
-//! hexmesh: the hexagonal Delaunay mesher of Sußner & Greiner (IMR 2009) and the other
-//! meshers of the papers in `shared/papers`, plus a harness that checks every mesh against
-//! what its mesher promises and compares meshers side by side.
+//! hexmesh, the harness: the `hexmesh` command, the reference meshers (CGAL through cxx,
+//! Shewchuk's Triangle, spade), the datasets of the papers, the report (CSV, Table 1, plots,
+//! pictures), isolated runs of meshers in child processes and the fuzz campaigns, around the
+//! meshing library `hexmesh-core`.
 //!
-//! Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`]) → `quality` → `report`.
+//! The library's modules are re-exported under their own names, so `hexmesh::hex` is
+//! `hexmesh_core::hex`. Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`])
+//! → `quality` → `report`.
+
+pub use hexmesh_core::{error, geom, hex, io, mesh, quality, refine, rhomb};
+
+/// The library's `mesher` module (`hexmesh_core::mesher`): the trait every mesher sits
+/// behind, its parameters and its result. (A plain re-export would bring the library's
+/// function `mesher` too, which `registry::mesher` replaces here.)
+pub mod mesher {
+    pub use hexmesh_core::mesher::*;
+}
 
 pub mod cli;
 pub mod datasets;
-pub mod error;
-pub mod geom;
-pub mod hex;
-pub mod io;
+pub mod fuzz;
 pub mod isolate;
 pub mod maxangle;
-pub mod mesh;
-pub mod mesher;
-pub mod quality;
 pub mod reference;
-pub mod refine;
 pub mod registry;
 pub mod report;
-pub mod rhomb;
-mod shuffle;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};

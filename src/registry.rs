@@ -4,34 +4,31 @@
 use crate::error::{Error, Result};
 use crate::mesher::Mesher;
 
-/// Every registered mesher, in report order.
+/// Every registered mesher, in report order: the library's (`hexmesh_core::meshers`) with
+/// the references among them.
 pub fn meshers() -> Vec<Box<dyn Mesher>> {
-    vec![
-        Box::new(crate::hex::extended::Hex),
-        Box::new(crate::hex::HexSimple),
-        #[cfg(feature = "cgal")]
-        Box::new(crate::reference::cgal::Cgal),
-        #[cfg(feature = "cgal")]
-        Box::new(crate::reference::cgal::CgalConforming),
-        Box::new(crate::reference::TriangleMesher),
-        Box::new(crate::reference::SpadeMesher),
-        Box::new(crate::rhomb::Rhomb),
-        Box::new(crate::refine::Saalfeld::default()),
-        Box::new(crate::refine::Lsb::default()),
-    ]
+    let mut ours = hexmesh_core::meshers().into_iter();
+    let mut take = |name: &str| {
+        let m = ours.next().expect("the library's meshers");
+        assert_eq!(m.name(), name, "the library's report order");
+        m
+    };
+    let mut all: Vec<Box<dyn Mesher>> = vec![take("hex"), take("hex-simple")];
+    #[cfg(feature = "cgal")]
+    {
+        all.push(Box::new(crate::reference::cgal::Cgal));
+        all.push(Box::new(crate::reference::cgal::CgalConforming));
+    }
+    all.push(Box::new(crate::reference::TriangleMesher));
+    all.push(Box::new(crate::reference::SpadeMesher));
+    all.extend([take("rhomb"), take("saalfeld"), take("lsb")]);
+    all
 }
 
 /// Options of registered meshers, reachable by name (`hexmesh mesh --mesher NAME`,
-/// `report --meshers NAME`) but not run by default: Saalfeld's constructive refinement of
-/// Sec. 5 and plain longest-side bisection, the variants the papers compare against.
+/// `report --meshers NAME`) but not run by default: the library's variants.
 pub fn variants() -> Vec<Box<dyn Mesher>> {
-    vec![
-        Box::new(crate::refine::Saalfeld {
-            constructive: true,
-            ..crate::refine::Saalfeld::default()
-        }),
-        Box::new(crate::refine::Lsb { plain: true }),
-    ]
+    hexmesh_core::registry::variants()
 }
 
 /// The names of the registered meshers, in report order.

@@ -101,7 +101,7 @@ fn a_plain_region_coarsens_into_a_blossom_of_seven_hexagons_with_sixty_triangles
     for t in (0..mesh.triangles.len()).filter(|&t| touches(t)) {
         let [a, b, c] = mesh.corners(t);
         for (p, q, s) in [(a, b, c), (b, c, a), (c, a, b)] {
-            let x = hexmesh::hex::fuzz::angle_deg(p, q, s);
+            let x = hexmesh::geom::angle_deg(p, q, s);
             assert!((lo..=90.0 + 1e-6).contains(&x), "triangle {t}: {x}°");
         }
         assert!(radius_ratio([a, b, c]) <= 1.20787);

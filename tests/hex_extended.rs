@@ -2,9 +2,9 @@
 //! quickly, the Sec. 6 promises hold: angles in [43.8979°, 90°], radius ratio at
 //! most 1.20787, no exact Delaunay violation, shortest edge at least √7/(12√3)·d_min.
 
+use hexmesh::fuzz::check_mesh;
 use hexmesh::geom::{dist, Point};
 use hexmesh::hex::extended::{delaunay_violations, mesh_extended, min_angle_bound};
-use hexmesh::hex::fuzz::check_mesh;
 use hexmesh::{Hexagon, Params, Pslg, TriMesh};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
@@ -232,7 +232,7 @@ fn a_deep_clustered_set_finishes_within_a_few_seconds_and_meets_every_bound() {
     use hexmesh::mesher::Budget;
     // Case 8 of fuzz seed 7 (clustered, 74 points, 21 levels): over ten seconds while the leaf
     // walk visited deep subtrees once per path to them.
-    let input = hexmesh::hex::fuzz::generate_family_case(7, 8, "clustered");
+    let input = hexmesh::fuzz::generate_family_case(7, 8, "clustered");
     let params = Params::default().with_budget(Budget {
         max_time: Some(std::time::Duration::from_secs(5)),
         ..Budget::default()

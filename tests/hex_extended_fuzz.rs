@@ -1,10 +1,10 @@
 //! The extended refinement (`hex`, paper 000 Sec. 5–6) under the fuzz campaign of
-//! `hexmesh::hex::fuzz`: every finished case must meet every Sec. 6 bound.
+//! `hexmesh::fuzz`: every finished case must meet every Sec. 6 bound.
 
 use std::time::{Duration, Instant};
 
+use hexmesh::fuzz::{check_mesh, generate_case};
 use hexmesh::hex::extended::Hex;
-use hexmesh::hex::fuzz::{check_mesh, generate_case};
 use hexmesh::mesher::Budget;
 use hexmesh::{Mesher, Params};
 
@@ -19,8 +19,8 @@ fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
     for case in from..to {
         let (family, input) = match std::env::var("HEX_FAMILIES7") {
             Ok(_) => {
-                let f = hexmesh::hex::fuzz::FAMILIES[(case % 7) as usize];
-                (f, hexmesh::hex::fuzz::generate_family_case(seed, case, f))
+                let f = hexmesh::fuzz::FAMILIES[(case % 7) as usize];
+                (f, hexmesh::fuzz::generate_family_case(seed, case, f))
             }
             Err(_) => generate_case(seed, case),
         };
@@ -50,7 +50,7 @@ fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
             }
         };
         if msg.is_some() && std::env::var_os("HEX_WRITE").is_some() {
-            let _ = hexmesh::hex::fuzz::write_failure("hex", seed, case, family, &input);
+            let _ = hexmesh::fuzz::write_failure("hex", seed, case, family, &input);
         }
         if msg.is_some() || el > slow {
             out.push(format!(
@@ -122,7 +122,7 @@ fn explore_hex_fuzz_cases() {
 #[test]
 fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
     let t = Instant::now();
-    let s = hexmesh::hex::fuzz::fuzz_campaign_sized("hex", 1000, 20261123, 20, |_| {});
+    let s = hexmesh::fuzz::fuzz_campaign_sized("hex", 1000, 20261123, 20, |_| {});
     eprintln!("{s:?}\n{:?}", t.elapsed());
     assert_eq!(s.cases, 1000);
     assert_eq!(s.failures, 0, "{:?}", s.first_failure);

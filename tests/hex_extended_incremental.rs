@@ -2,7 +2,7 @@
 //! refine only around them, and the mesh keeps every Sec. 6 bound, like the mesh of all
 //! points meshed at once.
 
-use hexmesh::hex::fuzz::check_mesh;
+use hexmesh::fuzz::check_mesh;
 use hexmesh::hex::IncrementalHex;
 use hexmesh::quality::{verdict, Bounds};
 use hexmesh::{Params, Point, Pslg, TriMesh};

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use hexmesh::hex::fuzz::check_mesh;
+use hexmesh::fuzz::check_mesh;
 use hexmesh::hex::HexSimple;
 use hexmesh::{Mesher, Params};
 

@@ -1,7 +1,7 @@
-//! The fuzz campaign of `hexmesh::hex::fuzz` as a test: thousands of seeded random point sets
+//! The fuzz campaign of `hexmesh::fuzz` as a test: thousands of seeded random point sets
 //! of every family, each meshed and checked against the promised bounds.
 
-use hexmesh::hex::fuzz_campaign;
+use hexmesh::fuzz::fuzz_campaign;
 
 #[test]
 fn hex_simple_survives_three_thousand_fuzz_cases() {

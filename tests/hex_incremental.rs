@@ -1,7 +1,7 @@
 //! Incremental insertion into a finished `hex-simple` mesh (paper 000 Sec. 1 and 9): added
 //! points refine the hierarchy only around them, and the mesh keeps its bounds.
 
-use hexmesh::hex::fuzz::check_mesh;
+use hexmesh::fuzz::check_mesh;
 use hexmesh::hex::IncrementalHexSimple;
 use hexmesh::{Params, Point, Pslg};
 use rand::{RngExt, SeedableRng};

@@ -77,7 +77,7 @@ fn radius_ratio(t: [Point; 3]) -> f64 {
 }
 
 fn angle(a: Point, b: Point, c: Point) -> f64 {
-    hexmesh::hex::fuzz::angle_deg(a, b, c)
+    hexmesh::geom::angle_deg(a, b, c)
 }
 
 /// Builds the relocated dual and checks every triangle touching a vertex of the chain (fin

@@ -1,7 +1,7 @@
 //! `hex-simple` on the paper's datasets (DESIGN.md "Datasets"): a valid mesh, every input point
 //! a vertex bit for bit, every angle in [30°, 120°] (paper 000 Sec. 4.3).
 
-use hexmesh::hex::fuzz::check_mesh;
+use hexmesh::fuzz::check_mesh;
 use hexmesh::hex::HexSimple;
 use hexmesh::{Hexagon, Mesher, Params, Point, Pslg};
 use rand::{RngExt, SeedableRng};

@@ -4,7 +4,7 @@
 //! yields a valid mesh with every input point a vertex, or, only when the points are closer
 //! than f64 can resolve at their coordinates, a clear `InputError::Range`.
 
-use hexmesh::hex::fuzz::{check_mesh, unit_hexagon};
+use hexmesh::fuzz::{check_mesh, unit_hexagon};
 use hexmesh::hex::lattice::{Key, Lattice};
 use hexmesh::hex::{mesh_with_hierarchy, HexSimple};
 use hexmesh::{Error, InputError, Mesher, Params, Point, Pslg};

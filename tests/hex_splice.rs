@@ -3,8 +3,8 @@
 //! The spliced mesh must be the dual extracted again whole: the same triangles with the same
 //! corners, bit for bit, and the same vertices.
 
+use hexmesh::fuzz::generate_case;
 use hexmesh::hex::extended::{mesh_extended, ExtendedRun};
-use hexmesh::hex::fuzz::generate_case;
 use hexmesh::{Params, Pslg, TriMesh};
 
 /// The mesh as its sorted triangles (`TriMesh::corner_bits_sorted`) and its sorted vertex
@@ -76,8 +76,8 @@ fn repairs_at_the_boundary_of_the_dual_splice_along_the_inner_seam() {
     // coordinates, the points near its edge no longer force the refinement there, and the
     // run needs no repair.
     for case in [996, 1014, 1360, 1968, 2961] {
-        let family = hexmesh::hex::fuzz::FAMILIES[(case % 9) as usize];
-        let input = hexmesh::hex::fuzz::generate_family_case(20261123, case, family);
+        let family = hexmesh::fuzz::FAMILIES[(case % 9) as usize];
+        let input = hexmesh::fuzz::generate_family_case(20261123, case, family);
         assert!(
             spliced_matches(&format!("fuzz case {case} ({family})"), &input),
             "fuzz case {case} no longer splices"

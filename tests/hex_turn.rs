@@ -2,7 +2,7 @@
 //! (`geom::principal_turn`): `hex` keeps every bound on the turned lattice, and along a
 //! lattice direction a line of points needs fewer triangles than at the dataset's angle.
 
-use hexmesh::hex::fuzz::check_mesh;
+use hexmesh::fuzz::check_mesh;
 use hexmesh::hex::{root_hexagon, IncrementalHex};
 use hexmesh::quality::{verdict, Bounds};
 use hexmesh::{datasets, Hexagon, Params, Point, Pslg, TriMesh};

@@ -2,9 +2,7 @@
 //! angles, the histogram, shortest edge over d_min, the two Delaunay counts, and the
 //! near-segment/interior split. Plus d_min against brute force (proptest).
 
-use hexmesh::quality::{
-    angle_at, closest_pair, metrics, metrics_split, triangle_shape, HEX_MIN_ANGLE_DEG,
-};
+use hexmesh::quality::{closest_pair, metrics, metrics_split, triangle_shape, HEX_MIN_ANGLE_DEG};
 use hexmesh::{Pslg, TriMesh};
 use proptest::prelude::*;
 
@@ -55,7 +53,7 @@ fn radius_ratio_is_1_20711_for_the_right_isoceles_triangle() {
 #[test]
 fn tiny_angles_are_accurate_where_acos_would_round_to_zero() {
     // The angle at the origin is atan(1e-9) ≈ 1e-9 rad; acos of its rounded cosine is 0.
-    let a = angle_at([0.0, 0.0], [1.0, 0.0], [1.0, 1e-9]);
+    let a = hexmesh::geom::angle_deg([0.0, 0.0], [1.0, 0.0], [1.0, 1e-9]);
     let expected = 1e-9f64.atan().to_degrees();
     assert!((a - expected).abs() < 1e-12 * expected, "{a} vs {expected}");
     let cos = 1.0 / (1.0 + 1e-18f64).sqrt();

@@ -480,7 +480,7 @@ fn lattice_points_on_the_given_hexagon_edge_are_meshed_as_boundary_vertices() {
     mesh_ok(&input);
     let mut on_edge = 0;
     for case in (0..600).filter(|c| c % 10 == 6) {
-        let input = hexmesh::hex::fuzz::generate_family_case(20261123, case, "lattice");
+        let input = hexmesh::fuzz::generate_family_case(20261123, case, "lattice");
         if nearest_to_edge(&input).1 < 1e-15 {
             on_edge += 1;
         }

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use hexmesh::error::InputError;
 use hexmesh::quality::rounding::{angle_allowance, delta, ANGLE_FLOOR_DEG};
-use hexmesh::quality::{angle_at, verdict, Bounds, HEX_MIN_ANGLE_DEG};
+use hexmesh::quality::{verdict, Bounds, HEX_MIN_ANGLE_DEG};
 use hexmesh::{Error, Params, Pslg, TriMesh};
 
 fn fixtures() -> Vec<PathBuf> {
@@ -72,7 +72,8 @@ fn the_allowance_is_sound_when_each_vertex_moves_by_its_delta() {
         .join("tests/fixtures/rounding/unit-square-shifted-1e7.node");
     let input = hexmesh::io::read_input(&path).expect("fixture");
     let mesh = mesh("hex", &input);
-    let angles = |c: [[f64; 2]; 3], m: usize| angle_at(c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
+    let angles =
+        |c: [[f64; 2]; 3], m: usize| hexmesh::geom::angle_deg(c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
     let mut largest_move: f64 = 0.0;
     let mut largest_allowance: f64 = 0.0;
     for dir in 0..8 {

@@ -472,7 +472,7 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         crate::registry::mesher(&args.mesher)?;
     }
     if args.mesher == "triangle" {
-        // The campaign (hex::fuzz) calls meshers in this process; Triangle exits the process
+        // The campaign (crate::fuzz) calls meshers in this process; Triangle exits the process
         // on some inputs and segfaults on others (lattice case 60 of seed 5:
         // tests/fixtures/refs/lattice_triangle_segfault.node), which would end the campaign
         // with no summary and no failure written.
@@ -502,7 +502,7 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
     };
     let step = (args.cases / 20).max(1);
     let summary =
-        crate::hex::fuzz_campaign(&args.mesher, args.cases, args.seed, |done| match &bar {
+        crate::fuzz::fuzz_campaign(&args.mesher, args.cases, args.seed, |done| match &bar {
             Some(bar) => bar.set_position(done),
             None if done % step == 0 => eprintln!("{done}/{} cases", args.cases),
             None => {}
@@ -525,7 +525,7 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
     );
     println!(
         "meshes by the largest rounding allowance used (degrees beyond the bounds): {}",
-        crate::hex::fuzz::ROUNDING_BINS
+        crate::fuzz::ROUNDING_BINS
             .iter()
             .zip(summary.rounding_used)
             .map(|(bin, n)| format!("{bin} {n}"))

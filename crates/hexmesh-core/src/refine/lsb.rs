@@ -73,16 +73,8 @@ pub struct LsbRun {
 pub fn min_angle(mesh: &TriMesh, t: usize) -> f64 {
     let c = mesh.corners(t);
     (0..3)
-        .map(|k| angle_at(c[k], c[(k + 1) % 3], c[(k + 2) % 3]))
+        .map(|k| crate::geom::angle_deg(c[k], c[(k + 1) % 3], c[(k + 2) % 3]).to_radians())
         .fold(f64::INFINITY, f64::min)
-}
-
-/// The angle at `a` of triangle (a, b, c): atan2 of cross and dot keeps small angles accurate.
-fn angle_at(a: Point, b: Point, c: Point) -> f64 {
-    let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
-    (u[0] * v[1] - u[1] * v[0])
-        .abs()
-        .atan2(u[0] * v[0] + u[1] * v[1])
 }
 
 /// Theorem 3.4's quantity: the smallest, over the triangles of `refined`, of its smallest
@@ -631,7 +623,7 @@ pub fn family(initial: &TriMesh, levels: u32, plain: bool) -> (TriMesh, Vec<u32>
 pub fn family_min_ratio(initial: &TriMesh, levels: u32, plain: bool) -> f64 {
     let smallest = |c: [Point; 3]| {
         (0..3)
-            .map(|k| angle_at(c[k], c[(k + 1) % 3], c[(k + 2) % 3]))
+            .map(|k| crate::geom::angle_deg(c[k], c[(k + 1) % 3], c[(k + 2) % 3]).to_radians())
             .fold(f64::INFINITY, f64::min)
     };
     let mut ratio = f64::INFINITY;

@@ -196,17 +196,3 @@ fn rounding_check(
 ) -> Result<()> {
     crate::quality::rounding::check_angles(mesh, points, (30.0, 90.0), max_rounding, NAME)
 }
-
-/// The angle at `o` of the triangle (o, a, b), in degrees.
-pub(crate) fn angle_deg(
-    o: crate::geom::Point,
-    a: crate::geom::Point,
-    b: crate::geom::Point,
-) -> f64 {
-    let u = [a[0] - o[0], a[1] - o[1]];
-    let w = [b[0] - o[0], b[1] - o[1]];
-    (u[0] * w[1] - u[1] * w[0])
-        .abs()
-        .atan2(u[0] * w[0] + u[1] * w[1])
-        .to_degrees()
-}

@@ -7,9 +7,9 @@
 
 use super::check::{angle_filter, SELF_CHECK_SLACK};
 use super::min_angle_bound;
+use crate::geom::angle_deg;
 use crate::geom::{orient2d, Point};
 use crate::hex::classify::Rings;
-use crate::hex::fuzz::angle_deg;
 use crate::hex::lattice::{FxHashMap, Key, KeyBytes};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;

@@ -210,10 +210,15 @@ mod tests {
     use crate::hex::extended::rings::{apply_placed, rings_with_flips};
     use crate::mesher::Params;
 
-    /// The finished `hex` dual of plane-100 with its vertex keys, the hierarchy, and an
-    /// interior vertex far from the bounding hexagon with its region (reach 2).
+    /// The finished `hex` dual of 100 points spread over the unit square (the R2 sequence:
+    /// steps of the plastic number's inverse powers) with its vertex keys, the hierarchy, and
+    /// an interior vertex far from the bounding hexagon with its region (reach 2).
     fn plane_100() -> (ExtendedRun, TriMesh, Vec<Key>, usize, Region) {
-        let input = crate::datasets::by_name("plane-100").expect("a dataset");
+        let (a1, a2) = (0.754_877_666_246_693, 0.569_840_290_998_053_3);
+        let points = (1..=100)
+            .map(|i| [(0.5 + a1 * i as f64).fract(), (0.5 + a2 * i as f64).fract()])
+            .collect();
+        let input = crate::mesh::Pslg::from_points(points);
         let run = mesh_extended(&input, &Params::default()).expect("meshes");
         let h = &run.hierarchy;
         let r = rings_with_flips(h, &run.rings);

@@ -148,9 +148,9 @@ pub fn fit_of(uses: impl IntoIterator<Item = Use>) -> Option<Fit> {
 /// cannot break it; its allowance is reported as the floor).
 pub fn angle_uses(triangle: usize, t: [Point; 3], lo: f64, hi: f64) -> [Use; 3] {
     let th = [
-        crate::quality::angle_at(t[0], t[1], t[2]),
-        crate::quality::angle_at(t[1], t[2], t[0]),
-        crate::quality::angle_at(t[2], t[0], t[1]),
+        crate::geom::angle_deg(t[0], t[1], t[2]),
+        crate::geom::angle_deg(t[1], t[2], t[0]),
+        crate::geom::angle_deg(t[2], t[0], t[1]),
     ];
     std::array::from_fn(|m| {
         let used = beyond(th[m], lo, hi);

@@ -8,15 +8,15 @@
 //! bookkeeping: its centroid is located among the initial triangles with exact orientation
 //! signs (a uniform grid of the initial triangles' bounding boxes keeps this near linear).
 
+use crate::geom::angle_deg;
 use crate::geom::{orient2d, Point};
 use crate::mesh::TriMesh;
-use crate::quality::metrics::angle_at;
 
 /// The smallest angle of a triangle given by its corners, in degrees.
 fn smallest_angle(c: [Point; 3]) -> f64 {
-    angle_at(c[0], c[1], c[2])
-        .min(angle_at(c[1], c[2], c[0]))
-        .min(angle_at(c[2], c[0], c[1]))
+    angle_deg(c[0], c[1], c[2])
+        .min(angle_deg(c[1], c[2], c[0]))
+        .min(angle_deg(c[2], c[0], c[1]))
 }
 
 /// What `descent` measured.

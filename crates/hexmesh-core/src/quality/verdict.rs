@@ -4,8 +4,6 @@
 
 use std::fmt;
 
-use serde::Serialize;
-
 use crate::geom::Point;
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::bounds::Bounds;
@@ -38,8 +36,9 @@ fn on_segment_tolerance(input: &Pslg) -> f64 {
 }
 
 /// The outcome of one check.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Status {
     Ok,
     Fail,
@@ -48,7 +47,8 @@ pub enum Status {
 }
 
 /// A triangle named in a failed check, with its corners.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WorstTriangle {
     pub triangle: usize,
     pub corners: [Point; 3],
@@ -57,7 +57,8 @@ pub struct WorstTriangle {
 }
 
 /// One row of the verdict table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Check {
     /// What was checked, with its unit.
     pub what: String,
@@ -76,14 +77,16 @@ pub struct Check {
 
 /// The largest allowance a figure of a mesh uses against its bound, and the allowance that
 /// figure has (`quality::rounding`): both in the unit of the figure.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rounding {
     pub used: f64,
     pub allowance: f64,
 }
 
 /// Validity, bounds and figures of one mesh.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Verdict {
     /// The name of the bounds checked, if any.
     pub bounds: Option<String>,

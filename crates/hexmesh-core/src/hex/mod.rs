@@ -13,13 +13,11 @@
 //! - `dual`: the dual triangle mesh (Sec. 4.2).
 //! - `pslg`: planar straight-line graphs: segments, holes, the domain (Sec. 7).
 //! - `picture`: SVG of the hexagons with the dual over them (Figs. 3, 4, 7).
-//! - `fuzz`: a seeded campaign that checks the promised bounds on random point sets.
 
 pub mod blossom;
 pub mod classify;
 pub mod dual;
 pub mod extended;
-pub mod fuzz;
 pub mod fxhash;
 pub mod incremental;
 pub mod keylines;
@@ -42,7 +40,6 @@ use crate::mesher::{MeshRun, Mesher, Params};
 use crate::quality::rounding;
 
 pub use dual::Placement;
-pub use fuzz::{fuzz_campaign, FuzzFailure, FuzzSummary};
 pub use incremental::IncrementalHex;
 pub use lattice::{Key, Lattice};
 pub use picture::{write_hexagons_svg, write_hierarchy_svg};

@@ -23,8 +23,8 @@ pub use bounds::{
 pub use closest_pair::{closest_pair, ClosestPair};
 pub use descent::{descent, Descent};
 pub use metrics::{
-    angle_at, metrics, metrics_split, triangle_shape, DelaunayEdge, Metrics, SplitMetrics,
-    TriangleShape, Worst, DELAUNAY_ANGLE_SLACK_DEG,
+    metrics, metrics_split, triangle_shape, DelaunayEdge, Metrics, SplitMetrics, TriangleShape,
+    Worst, DELAUNAY_ANGLE_SLACK_DEG,
 };
 pub use validate::{validate, ValidateOptions, Violation};
 

@@ -33,10 +33,10 @@
 
 use std::collections::BTreeSet;
 
-use super::angle_deg;
 use super::lattice::{half_in_hexagon, hexnorm, Cell, MAX_LEVEL};
 use super::patterns::hanging;
 use super::tree::{Cover, Guard, KeyMap, Stop, Tree};
+use crate::geom::angle_deg;
 
 /// Circumradius of a melted patch in level-k steps (side 2L, L = 2l).
 pub const MELTED_RADIUS: i64 = 4;

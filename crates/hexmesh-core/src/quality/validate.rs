@@ -13,13 +13,12 @@
 use std::collections::HashMap;
 use std::fmt;
 
-use serde::Serialize;
-
 use crate::geom::{dist, orient2d_scaled, scale2, scale_exponent, scale_point, Dist2, Point};
 use crate::mesh::{Pslg, TriMesh};
 
 /// What `validate` checks beyond the invariants every mesh must meet.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ValidateOptions {
     /// The mesh must be one disc: more than one boundary loop is a violation. True for meshes
     /// of point sets, whose domain is the bounding hexagon.
@@ -30,8 +29,9 @@ pub struct ValidateOptions {
 
 /// One broken invariant. Indices are 0-based; `points` are the coordinates of the named
 /// vertices, so a message can be checked without opening the mesh.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+#[cfg_attr(feature = "serde", serde(tag = "kind", rename_all = "snake_case"))]
 pub enum Violation {
     /// The mesh has no triangles: it meshes nothing, so no bound may pass on it vacuously.
     NoTriangles { vertices: usize },

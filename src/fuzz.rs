@@ -162,8 +162,8 @@ pub fn fuzz_campaign_sized(
         failed: Vec::new(),
     };
     let m: Box<dyn Mesher> = match mesher {
-        "hex-simple" => Box::new(super::HexSimple),
-        "hex" => Box::new(super::extended::Hex),
+        "hex-simple" => Box::new(crate::hex::HexSimple),
+        "hex" => Box::new(crate::hex::extended::Hex),
         other => match crate::registry::mesher(other) {
             Ok(m) => m,
             Err(e) => {
@@ -590,16 +590,6 @@ pub fn check_mesh(
         max_angle: hi,
         triangles: mesh.triangles.len(),
     })
-}
-
-/// The angle at `a` of triangle (a, b, c), in degrees.
-pub fn angle_deg(a: Point, b: Point, c: Point) -> f64 {
-    let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
-    let (vx, vy) = (c[0] - a[0], c[1] - a[1]);
-    (ux * vy - uy * vx)
-        .abs()
-        .atan2(ux * vx + uy * vy)
-        .to_degrees()
 }
 
 /// Writes the points of a failing case as a Triangle .node file under `fuzz-failures/`.

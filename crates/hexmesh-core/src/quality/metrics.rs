@@ -5,24 +5,25 @@
 //! `metrics_split` reports the figures near input segments and away from them apart, since on
 //! a PSLG the bounds hold only in the interior (Sec. 7).
 
-use serde::Serialize;
-
 use crate::geom::{
-    dist_scaled, incircle_scaled, orient2d_scaled, scale2, scale_exponent, scale_point, Point,
+    angle_deg, dist_scaled, incircle_scaled, orient2d_scaled, scale2, scale_exponent, scale_point,
+    vector_angle_deg, Point,
 };
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::closest_pair::closest_pair;
 use crate::quality::validate::topology;
 
 /// A figure and the triangle where it is reached.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Worst {
     pub value: f64,
     pub triangle: usize,
 }
 
 /// An interior edge that fails the exact empty-circle test.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct DelaunayEdge {
     pub edge: [u32; 2],
     /// The two triangles sharing the edge; the first traverses `edge` in its order.
@@ -31,7 +32,8 @@ pub struct DelaunayEdge {
 
 /// Quality figures of a mesh. Angles are in degrees. Figures over an empty set are `None`.
 /// Triangles naming vertices that do not exist are left out (`validate` reports them).
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Metrics {
     /// Vertices of the mesh (for a part of a mesh: the vertices its triangles use).
     pub vertices: usize,
@@ -88,24 +90,6 @@ fn cross(u: [f64; 2], v: [f64; 2]) -> f64 {
     u[0] * v[1] - u[1] * v[0]
 }
 
-/// The angle between the vectors u and v, in degrees, from atan2 of the cross and dot
-/// products. Both are scaled alike (atan2 does not see a common factor), so the caller may
-/// scale u and v by one power of two.
-fn angle_between(u: [f64; 2], v: [f64; 2]) -> f64 {
-    let dot = u[0] * v[0] + u[1] * v[1];
-    cross(u, v).abs().atan2(dot).to_degrees()
-}
-
-/// The angle at `a` between rays to `b` and `c`, in degrees, from atan2 of the cross and dot
-/// products: accurate near 0° and 180°, where acos of a rounded cosine is not. The two
-/// difference vectors are scaled by a power of two to a largest component in [1, 2) first
-/// (exact), so that their products neither overflow nor underflow at any coordinates.
-pub fn angle_at(a: Point, b: Point, c: Point) -> f64 {
-    let (u, v) = (sub(b, a), sub(c, a));
-    let e = scale_exponent(&[u[0], u[1], v[0], v[1]]);
-    angle_between(scale_point(u, -e), scale_point(v, -e))
-}
-
 /// The shape figures of triangle (a, b, c). R/(2r) = abc·s / (8·A²) with s the semiperimeter
 /// (R = abc/(4A), r = A/s); infinite for a degenerate triangle.
 pub fn triangle_shape(p: [Point; 3]) -> TriangleShape {
@@ -133,9 +117,9 @@ fn shape_and_area(p: [Point; 3]) -> (TriangleShape, f64) {
     let e = scale_exponent(&[d[0][0], d[0][1], d[2][0], d[2][1], d[4][0], d[4][1]]);
     let [ab, ac, bc, ba, ca, cb] = d.map(|v| scale_point(v, -e));
     let angles = [
-        angle_between(ab, ac),
-        angle_between(bc, ba),
-        angle_between(ca, cb),
+        vector_angle_deg(ab, ac),
+        vector_angle_deg(bc, ba),
+        vector_angle_deg(ca, cb),
     ];
     // Edge k is opposite corner k.
     let length = |v: [f64; 2]| (v[0] * v[0] + v[1] * v[1]).sqrt();
@@ -282,7 +266,7 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
                 });
             }
         }
-        if angle_at(p1, pu, pv) + angle_at(p2, pu, pv) > 180.0 + DELAUNAY_ANGLE_SLACK_DEG {
+        if angle_deg(p1, pu, pv) + angle_deg(p2, pu, pv) > 180.0 + DELAUNAY_ANGLE_SLACK_DEG {
             m.delaunay_tolerance_violations += 1;
         }
     }
@@ -299,7 +283,8 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
 }
 
 /// Figures of the triangles near the input segments and of the rest, apart.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct SplitMetrics {
     /// The distance from a segment within which a triangle counts as near.
     pub band: f64,

@@ -199,8 +199,8 @@ fn melted_triangles(b: &mut Builder, patch: &Patch) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geom::angle_deg;
     use crate::geom::Hexagon;
-    use crate::rhomb::angle_deg;
     use crate::rhomb::tree::index_at;
 
     fn sorted_angles(m: &TriMesh, t: usize) -> [f64; 3] {

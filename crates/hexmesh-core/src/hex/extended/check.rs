@@ -8,8 +8,8 @@
 
 use super::min_angle_bound;
 use crate::error::{Error, Result};
+use crate::geom::angle_deg;
 use crate::geom::{incircle, orient2d, Point};
-use crate::hex::fuzz::angle_deg;
 use crate::hex::lattice::Key;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;

@@ -7,8 +7,6 @@
 //! Delaunay property and conformity; longest-side bisection (paper 003) every angle at least
 //! half the smallest angle of the initial triangle it descends from (`quality::descent`).
 
-use serde::Serialize;
-
 use crate::error::{Error, Result};
 
 /// The floor of every angle's rounding allowance, in degrees (`quality::rounding`, where the
@@ -53,7 +51,8 @@ pub const BOUND_NAMES: &[&str] = &[
 ];
 
 /// Bounds a mesh is checked against, on top of validity. `None` means not checked.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Bounds {
     /// The name the bounds were parsed from.
     pub name: String,

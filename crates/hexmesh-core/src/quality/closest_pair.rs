@@ -8,12 +8,11 @@
 use std::collections::BTreeSet;
 use std::ops::Bound::Included;
 
-use serde::Serialize;
-
 use crate::geom::{Dist2, Point};
 
 /// The closest pair of a point set: indices (first < second) and their distance.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ClosestPair {
     pub first: usize,
     pub second: usize,

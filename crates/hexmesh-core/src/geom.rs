@@ -86,6 +86,29 @@ pub fn scale_point(p: Point, n: i32) -> Point {
     [scale2(p[0], n), scale2(p[1], n)]
 }
 
+/// The angle at `a` between the rays to `b` and `c`, in degrees: the library's one angle
+/// function (the meshers' rules and self-checks, `quality`, the fuzz campaigns). atan2 of the
+/// cross and dot products keeps angles near 0° and 180° accurate, where acos of a rounded
+/// cosine is not; both difference vectors are first scaled by one power of two to a largest
+/// component in [1, 2) (exact), so the products neither overflow nor underflow at any finite
+/// coordinates.
+pub fn angle_deg(a: Point, b: Point, c: Point) -> f64 {
+    let (u, v) = ([b[0] - a[0], b[1] - a[1]], [c[0] - a[0], c[1] - a[1]]);
+    let e = scale_exponent(&[u[0], u[1], v[0], v[1]]);
+    vector_angle_deg(scale_point(u, -e), scale_point(v, -e))
+}
+
+/// The angle between the vectors `u` and `v`, in degrees, from atan2 of their cross and dot
+/// products (`angle_deg` without the scaling: atan2 does not see a factor common to both, so
+/// a caller may scale u and v by one power of two, as `quality`'s metrics do for a triangle's
+/// three edges at once).
+pub fn vector_angle_deg(u: [f64; 2], v: [f64; 2]) -> f64 {
+    (u[0] * v[1] - u[1] * v[0])
+        .abs()
+        .atan2(u[0] * v[0] + u[1] * v[1])
+        .to_degrees()
+}
+
 /// The exponent by which the predicates scale their points, when the largest coordinate
 /// magnitude lies outside [2^-limit, 2^limit]: `None` when no scaling is needed.
 fn predicate_scale(points: &[Point], limit: i32) -> Option<i32> {

@@ -180,6 +180,42 @@ fn a_pair_too_close_for_its_coordinates_is_refused_naming_both_points() {
     assert!(m.mesh(&input, &loose).is_ok());
 }
 
+/// hex on a domain keeps the Sec. 6 bounds away from the segments, and the contract covers
+/// them there too: a unit square at 1e7 with two interior points 1e-3 apart meshes, every
+/// interior angle within 0.01° of its bound; 1e-5 apart (5,000 ulps) the pair would need
+/// about 1° and is refused, naming it.
+#[test]
+fn hex_on_a_domain_keeps_its_interior_within_max_rounding_or_refuses_naming_the_pair() {
+    let square = |gap: f64| Pslg {
+        points: vec![
+            [1e7, 1e7],
+            [1e7 + 1.0, 1e7],
+            [1e7 + 1.0, 1e7 + 1.0],
+            [1e7, 1e7 + 1.0],
+            [1e7 + 0.5, 1e7 + 0.5],
+            [1e7 + 0.5 + gap, 1e7 + 0.5],
+        ],
+        segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+        ..Pslg::default()
+    };
+    let hex = hexmesh::mesher("hex").expect("registered");
+    let input = square(1e-3);
+    let run = hex.mesh(&input, &Params::default()).expect("meshes");
+    let bounds = Bounds::parse("hex").expect("bounds");
+    let v = verdict(&run.mesh, Some(&input), Some(&bounds));
+    assert!(v.passed(), "{v}");
+    for c in v.checks.iter().filter(|c| c.what.contains("angle")) {
+        assert!(c.rounding.is_none_or(|r| r.used <= 0.01), "{}", c.what);
+    }
+    match hex.mesh(&square(1e-5), &Params::default()) {
+        Err(Error::Input {
+            problem: InputError::Rounding { first, second, .. },
+            ..
+        }) => assert_eq!((first, second), (4, 5)),
+        other => panic!("expected a rounding refusal, got {other:?}"),
+    }
+}
+
 #[test]
 fn the_command_line_names_the_two_points_by_their_lines() {
     let dir = std::env::temp_dir().join(format!("hexmesh-rounding-{}", std::process::id()));

@@ -295,6 +295,33 @@ pub fn check_angles(
     Ok(())
 }
 
+/// `check_angles` on the triangles of a mesh of a PSLG that the verdict counts as interior
+/// (no corner on, and none within the on-segment tolerance of, an input segment): where the
+/// bounds of a mesher hold away from the segments only (paper 000 Sec. 7), those are the
+/// angles the rounding contract covers.
+pub fn check_interior_angles(
+    mesh: &crate::mesh::TriMesh,
+    input: &crate::mesh::Pslg,
+    bounds: (f64, f64),
+    max_rounding: f64,
+    mesher: &str,
+) -> crate::error::Result<()> {
+    let band = crate::quality::verdict::on_segment_tolerance(input);
+    let near = crate::quality::metrics::near_segment_triangles(mesh, input, band);
+    let mut is_near = vec![false; mesh.triangles.len()];
+    for t in near {
+        is_near[t] = true;
+    }
+    let interior = crate::mesh::TriMesh {
+        vertices: mesh.vertices.clone(),
+        triangles: (0..mesh.triangles.len())
+            .filter(|&t| !is_near[t])
+            .map(|t| mesh.triangles[t])
+            .collect(),
+    };
+    check_angles(&interior, &input.points, bounds, max_rounding, mesher)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -345,6 +372,40 @@ mod tests {
             matches!(err, crate::error::Error::Mesher { .. }),
             "not a defect: {err}"
         );
+    }
+
+    #[test]
+    fn interior_angles_of_a_domain_are_held_to_max_rounding_and_those_at_segments_are_not() {
+        // A square at 1e7 with its four segments, one interior triangle 1e-3 across whose
+        // smallest angle is 1e-3° below 43.8978862° (its allowance there is about 2e-3°), and
+        // one triangle on a corner with a 10° angle (near a segment: not checked here).
+        let o = 1e7;
+        let lo: f64 = 43.897_886_2 - 1e-3;
+        let (c, s) = (lo.to_radians().cos(), lo.to_radians().sin());
+        let a = [o + 0.5, o + 0.5];
+        let t = [a, [a[0] + 1e-3, a[1]], [a[0] + 1e-3 * c, a[1] + 1e-3 * s]];
+        let input = crate::mesh::Pslg {
+            points: vec![[o, o], [o + 1.0, o], [o + 1.0, o + 1.0], [o, o + 1.0]],
+            segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+            ..crate::mesh::Pslg::default()
+        };
+        let ten = 10f64.to_radians();
+        let mut vertices = input.points.clone();
+        vertices.extend(t);
+        vertices.push([o + 0.1 * ten.cos(), o + 0.1 * ten.sin()]);
+        let mesh = crate::mesh::TriMesh {
+            vertices,
+            triangles: vec![[4, 5, 6], [0, 1, 7]],
+        };
+        let bounds = (43.897_886_2, 90.0);
+        assert!(check_interior_angles(&mesh, &input, bounds, 0.01, "m").is_ok());
+        match check_interior_angles(&mesh, &input, bounds, 1e-4, "m") {
+            Err(crate::error::Error::Input {
+                problem: crate::error::InputError::Rounding { .. },
+                ..
+            }) => {}
+            other => panic!("expected a refusal, got {other:?}"),
+        }
     }
 
     #[test]

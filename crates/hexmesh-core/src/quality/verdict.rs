@@ -16,7 +16,7 @@ use crate::quality::validate::{validate, ValidateOptions, Violation};
 /// check's 2^-40 of the segments' coordinate scale (`validate`). A mesher that splits a
 /// segment at a constructed point can only round it onto the line; the triangles at such a
 /// point touch the segment, and count as near-segment triangles, not as interior ones.
-fn on_segment_tolerance(input: &Pslg) -> f64 {
+pub(crate) fn on_segment_tolerance(input: &Pslg) -> f64 {
     let scale = input
         .segments
         .iter()

@@ -193,6 +193,15 @@ impl Mesher for Hex {
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
         if input.has_segments() {
             let out = crate::hex::pslg::mesh_pslg(input, params)?;
+            // The interior keeps the Sec. 6 angles under the rounding contract: refused,
+            // naming the points, where rounding would move one more than `max_rounding`.
+            crate::quality::rounding::check_interior_angles(
+                &out.mesh,
+                input,
+                (min_angle_bound(), 90.0),
+                params.max_rounding_deg(),
+                self.name(),
+            )?;
             return Ok(MeshRun {
                 mesh: out.mesh,
                 complete: true,

@@ -3,7 +3,9 @@
 //! it, boundary semi-hexagons count as virtual full hexagons, and the centre of an occupied
 //! hexagon is replaced by its input point.
 //!
-//! The triangles are found as a 1:4 / 1:2 refinement of lattice triangles (DESIGN.md): the
+//! The centres of the hexagons of one level form a triangular lattice, and subdividing a
+//! hexagon refines the triangles around its centre 1:4 at their midpoints, so the triangles
+//! are found as a 1:4 / 1:2 refinement of lattice triangles: the
 //! triangle of three mutually adjacent full hexagons A, B, C of level k is split into the four
 //! triangles of level k + 1 when all three are subdivided, into two through the midpoint of AB
 //! (a full hexagon joined from two semi-hexagons) when exactly A and B are, and is a triangle of

@@ -28,7 +28,7 @@ pub enum InputError {
     MissingVertex {
         /// The segment's 0-based index.
         segment: usize,
-        /// The vertex it names, 0-based (signed, so that a file's negative number survives).
+        /// The vertex it names, 0-based.
         vertex: i64,
         /// How many points there are: valid vertices are `0..count`.
         count: usize,

@@ -101,7 +101,7 @@ pub struct Chain {
     pub top: Key,
     /// The direction s of the first hexagon from T, an index into `DIRS` (0..6).
     pub start: usize,
-    /// How many hexagons, n (1 to 6).
+    /// How many hexagons, n: 1 to 4, or 6 for a blossom (a run of 5 is subdivided).
     pub len: usize,
 }
 

@@ -284,9 +284,8 @@ pub struct Hexagon {
     /// Distance from the centre to a corner (equal to the edge length).
     pub circumradius: f64,
     /// The rotation about the centre: `Turn::NONE` for the flat-topped hexagon (corners at 0°,
-    /// 60°, …, 300°);
-    /// `Hexagon::aligned` turns the hexagon of an elongated point set (the hex meshers' root,
-    /// `hex::root_hexagon`).
+    /// 60°, …, 300°); `Hexagon::aligned` turns the hexagon of an elongated point set (the hex
+    /// meshers' root, `hex::root_hexagon`).
     pub turn: Turn,
 }
 

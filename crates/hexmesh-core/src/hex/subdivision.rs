@@ -7,8 +7,8 @@
 //! semi-hexagon (a fin of its unsubdivided parent) or not yet present follows from its parents
 //! (`Key::parents`): an edge child is a full hexagon when both hexagons sharing its edge are
 //! subdivided, and a semi-hexagon when only one is. Cells whose centre lies outside the
-//! bounding hexagon count as subdivided, which
-//! makes the boundary semi-hexagons virtual full hexagons (Fig. 1).
+//! bounding hexagon count as subdivided, which makes the boundary semi-hexagons virtual full
+//! hexagons (Fig. 1).
 //!
 //! Point location rule: a point belongs to the cell reached by descending from the root. Inside
 //! a subdivided hexagon it goes to the child cell (central or edge) whose constructed hexagon

@@ -9,51 +9,95 @@ pub enum InputError {
     /// The input has no points.
     Empty,
     /// Point `index` (0-based) has a NaN or infinite coordinate.
-    NonFinite { index: usize, point: [f64; 2] },
-    /// Points `first` and `second` (0-based) have the same coordinates.
-    Duplicate {
-        first: usize,
-        second: usize,
+    NonFinite {
+        /// The point's 0-based index.
+        index: usize,
+        /// Its coordinates as given.
         point: [f64; 2],
     },
-    /// Segment `index` names a vertex that does not exist.
+    /// Points `first` and `second` (0-based) have the same coordinates.
+    Duplicate {
+        /// The smaller of the two 0-based indices.
+        first: usize,
+        /// The larger of the two 0-based indices.
+        second: usize,
+        /// The coordinates both share.
+        point: [f64; 2],
+    },
+    /// Segment `segment` names a vertex that does not exist.
     MissingVertex {
+        /// The segment's 0-based index.
         segment: usize,
+        /// The vertex it names, 0-based.
         vertex: i64,
+        /// How many points there are: valid vertices are `0..count`.
         count: usize,
     },
-    /// Segment `index` joins a vertex to itself.
-    DegenerateSegment { segment: usize },
+    /// Segment `segment` joins a vertex to itself.
+    DegenerateSegment {
+        /// The segment's 0-based index.
+        segment: usize,
+    },
     /// Two segments cross or overlap somewhere other than a shared endpoint.
-    CrossingSegments { first: usize, second: usize },
+    CrossingSegments {
+        /// One segment's 0-based index.
+        first: usize,
+        /// The other's.
+        second: usize,
+    },
     /// A point lies in the interior of a segment it is not an endpoint of.
-    PointOnSegment { point: usize, segment: usize },
+    PointOnSegment {
+        /// The point's 0-based index.
+        point: usize,
+        /// The segment's 0-based index.
+        segment: usize,
+    },
     /// A hole seed has a NaN or infinite coordinate.
-    NonFiniteHole { index: usize },
+    NonFiniteHole {
+        /// The hole's 0-based index.
+        index: usize,
+    },
     /// Point `index` of a point set does not lie strictly inside its bounding hexagon: the
     /// one the input gives, or (`fitted`) the one fitted to the points, which f64 cannot
     /// make contain points that are too close together for their coordinates.
     OutsideHexagon {
+        /// The point's 0-based index.
         index: usize,
+        /// Its coordinates.
         point: [f64; 2],
+        /// Whether the hexagon was fitted to the points rather than given.
         fitted: bool,
     },
     /// The points are too close together or too far apart for f64 to mesh them.
-    Range { detail: String },
+    Range {
+        /// The whole message, naming the points and the distances.
+        detail: String,
+    },
     /// Points `first` and `second` (0-based), `distance` apart, are too close together for
     /// their coordinates: a mesh of them would use a rounding allowance of `needed` degrees
     /// (infinite: more levels than the mesher's lattice has), more than the `allowed`
     /// (`--max-rounding`; README "Checks").
     Rounding {
+        /// One point's 0-based index.
         first: usize,
+        /// The other's.
         second: usize,
+        /// Their Euclidean distance, in input units.
         distance: f64,
+        /// The allowance a mesh of them would use, in degrees; 180 or more: rounding alone
+        /// could turn a triangle over; infinite: beyond the lattice's depth.
         needed: f64,
+        /// The largest allowance permitted, in degrees.
         allowed: f64,
     },
     /// Point `index` (0-based) lies only `distance` inside the bounding hexagon's edge, too
     /// close for the mesher's lattice to put triangles between them in f64.
-    NearBoundary { index: usize, distance: f64 },
+    NearBoundary {
+        /// The point's 0-based index.
+        index: usize,
+        /// How far it lies inside the hexagon's nearest edge, in input units.
+        distance: f64,
+    },
 }
 
 impl InputError {
@@ -174,28 +218,47 @@ impl std::error::Error for InputError {}
 pub enum Error {
     /// Reading or writing a file failed at the operating-system level.
     Io {
+        /// The file read or written.
         path: PathBuf,
+        /// What the operating system said.
         source: std::io::Error,
     },
     /// A file is malformed: `line` is 1-based, 0 when the problem is the file as a whole.
     Parse {
+        /// The file.
         path: PathBuf,
+        /// The 1-based line, or 0 for the whole file.
         line: usize,
+        /// What is wrong there.
         message: String,
     },
     /// The input is unusable; `path` is the file it came from, when it came from one, and
     /// `first_index` the number that file gives its first point, segment and hole (0 or 1;
     /// 0 without a file): the message counts from it, `problem` keeps 0-based indices.
     Input {
+        /// The file the input came from, if any.
         path: Option<PathBuf>,
+        /// The 1-based line of that file the problem is on, when one line shows it.
         line: Option<usize>,
+        /// The problem, with 0-based indices.
         problem: InputError,
+        /// The number the file gives its first item (0 or 1; 0 without a file).
         first_index: u32,
     },
     /// No mesher of that name is registered.
-    UnknownMesher { name: String, known: Vec<String> },
+    UnknownMesher {
+        /// The name asked for.
+        name: String,
+        /// The names that are registered.
+        known: Vec<String>,
+    },
     /// A mesher failed; `message` says why (a C++ exception, an unsupported input, ...).
-    Mesher { mesher: String, message: String },
+    Mesher {
+        /// The mesher's registered name.
+        mesher: String,
+        /// Why it failed.
+        message: String,
+    },
     /// A bad command-line argument or option value.
     Usage(String),
 }

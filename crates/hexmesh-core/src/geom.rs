@@ -197,6 +197,7 @@ pub struct Dist2 {
 }
 
 impl Dist2 {
+    /// The squared distance of a point to itself; smaller than every other.
     pub const ZERO: Dist2 = Dist2 {
         exponent: i32::MIN,
         mantissa: 0.0,
@@ -273,16 +274,18 @@ pub fn dist(a: Point, b: Point) -> f64 {
     dist2(a, b).sqrt()
 }
 
-/// A regular, flat-topped hexagon: corners at 0°, 60°, …, 300° from the centre
-/// (DESIGN.md "One way to see the hexagon hierarchy").
+/// A regular hexagon: corners at 0°, 60°, …, 300° from the centre (flat-topped: top and bottom
+/// edges horizontal), all turned counter-clockwise by `turn`. The hex meshers' lattice and the
+/// rhomb mesher's root are built on it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hexagon {
+    /// The centre, in input coordinates.
     pub center: Point,
     /// Distance from the centre to a corner (equal to the edge length).
     pub circumradius: f64,
-    /// The rotation about the centre: `Turn::NONE` for the flat-topped hexagon of DESIGN.md;
-    /// `Hexagon::aligned` turns the hexagon of an elongated point set (the hex meshers' root,
-    /// `hex::root_hexagon`).
+    /// The rotation about the centre: `Turn::NONE` for the flat-topped hexagon (corners at 0°,
+    /// 60°, …, 300°); `Hexagon::aligned` turns the hexagon of an elongated point set (the hex
+    /// meshers' root, `hex::root_hexagon`).
     pub turn: Turn,
 }
 
@@ -296,7 +299,9 @@ pub(crate) const CORNER_Y: [i64; 6] = [0, 1, 1, 0, -1, -1];
 /// rounding; the stored values are the ones every position is computed from).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Turn {
+    /// cos θ.
     pub cos: f64,
+    /// sin θ (positive: counter-clockwise).
     pub sin: f64,
 }
 
@@ -304,6 +309,7 @@ impl Turn {
     /// No rotation: corners at 0°, 60°, …, 300°.
     pub const NONE: Turn = Turn { cos: 1.0, sin: 0.0 };
 
+    /// Whether this is `Turn::NONE` exactly (cos 1, sin 0 bit for bit).
     pub fn is_none(self) -> bool {
         self == Turn::NONE
     }
@@ -332,8 +338,8 @@ pub const ELONGATED: f64 = 0.25;
 /// mean `hex` counts of 19 886 to 20 871 triangles, and 18 132 and 18 126 at 30° and 90°,
 /// along a lattice direction (with this turn, 18 147; unturned, at the dataset's 20.3°,
 /// 20 343). The paper fixes only the inscribed
-/// circle of the bounding hexagon (Sec. 4.1), not its rotation; DESIGN.md's flat-topped
-/// hexagon stays for every other input.
+/// circle of the bounding hexagon (Sec. 4.1), not its rotation; every other input keeps the
+/// flat-topped hexagon (corners at 0°, 60°, …, 300°).
 ///
 /// Only +, −, ×, ÷ and square roots (correctly rounded in IEEE 754) make it, on sums taken in
 /// input order, so it has the same bits on every machine.

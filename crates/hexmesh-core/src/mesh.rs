@@ -8,6 +8,7 @@ use crate::geom::{orient2d, Hexagon, Point};
 /// Triangle's .poly format. A point set is a PSLG without segments.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Pslg {
+    /// The input points; point i (0-based) is what segments and errors call i.
     pub points: Vec<Point>,
     /// Pairs of 0-based point indices.
     pub segments: Vec<[u32; 2]>,
@@ -32,16 +33,17 @@ impl Pslg {
         !self.segments.is_empty()
     }
 
-    /// The bounding hexagon of a point set: given, or fitted (DESIGN.md "Datasets"). The hex
+    /// The bounding hexagon of a point set: given, or fitted (its inscribed circle the
+    /// minimum enclosing circle of the points, slightly enlarged: `Hexagon::fitted`). The hex
     /// meshers turn a fitted one for elongated points (`hex::root_hexagon`).
     pub fn bounding_hexagon(&self) -> Hexagon {
         self.hexagon
             .unwrap_or_else(|| Hexagon::fitted(&self.points))
     }
 
-    /// The domain a reference mesher is asked to mesh (DESIGN.md "Datasets"): for a point set,
-    /// the bounding hexagon's corners (appended after the input points) and its six edges as
-    /// segments; a PSLG is returned unchanged.
+    /// The domain a reference mesher is asked to mesh, so that it covers what ours cover: for
+    /// a point set, the bounding hexagon's corners (appended after the input points) and its
+    /// six edges as segments; a PSLG is returned unchanged.
     pub fn reference_domain(&self) -> Pslg {
         if self.has_segments() {
             return self.clone();
@@ -270,7 +272,9 @@ fn segments_conflict(s: [u32; 2], t: [u32; 2], a: Point, b: Point, c: Point, d: 
 /// A triangle mesh: f64 vertices and counter-clockwise triangles of 0-based vertex indices.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct TriMesh {
+    /// The vertex coordinates; vertex i is `vertices[i]`.
     pub vertices: Vec<Point>,
+    /// Each triangle's three vertex indices (0-based), counter-clockwise.
     pub triangles: Vec<[u32; 3]>,
 }
 

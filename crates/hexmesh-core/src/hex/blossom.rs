@@ -2,7 +2,7 @@
 //! h_i must be of type FIXED_CENTER_REGULAR. By this operation 37 hexagons are replaced by 7.
 //! In the dual mesh a blossom is represented by 60 triangles instead of 96."
 //!
-//! In the lattice of DESIGN.md a blossom is one subdivided hexagon T of level k and its six
+//! In the integer lattice of `lattice` (cells (k, i, j)) a blossom is one subdivided hexagon T of level k and its six
 //! subdivided neighbours N_0 … N_5 made leaves again. Before, the level-(k+1) cells within
 //! lattice distance 3 of c = T's central child are 37 full leaves: the central children of T
 //! and N_d (distance 0 and 2), the cells between T and N_d (1), between N_d and N_{d+1} (2),

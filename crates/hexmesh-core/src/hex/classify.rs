@@ -10,15 +10,26 @@ use crate::hex::subdivision::Hierarchy;
 /// The classes of Sec. 5.1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Class {
+    /// One fin; the centre moves towards the hexagon across it (Sec. 5.4).
     MovedCenter1,
+    /// Two consecutive fins.
     MovedCenter2,
+    /// Three consecutive fins; the fins' centres enter the dual (Sec. 5.4).
     MovedCenter3,
+    /// Fins that are not one run of one to three: the hexagon must be subdivided (Sec. 5.2).
     Subdivide,
+    /// No fins; holds an input point inside its closed half-sized hexagon (central child).
     Occupied1,
+    /// No fins; holds an input point outside its half-sized hexagon.
     Occupied2,
+    /// No fins; in the 1-ring of an OCCUPIED_1 or the 2-ring of an OCCUPIED_2 hexagon. Its
+    /// centre stays.
     FixedCenterInRing,
+    /// No fins; in the 1-ring of an OCCUPIED_2 hexagon, whose ring shift moves its centre.
     MovedCenterInRing,
+    /// No fins; the top neighbour of a MOVED_CENTER_3 hexagon.
     MovedCenter4,
+    /// No fins and none of the above: the centre stays.
     FixedCenterRegular,
 }
 
@@ -44,7 +55,7 @@ impl Class {
         matches!(self, Class::FixedCenterInRing | Class::FixedCenterRegular)
     }
 
-    /// MOVED_CENTER_[123] (a hexagon with fins).
+    /// A hexagon with fins: MOVED_CENTER_1, _2, _3 or SUBDIVIDE.
     pub fn has_fins(self) -> bool {
         matches!(
             self,
@@ -58,19 +69,24 @@ impl Class {
 /// `first + len`, and for three fins the top neighbour in `first + 4`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct FinStrip {
+    /// The direction of the first fin, an index into `lattice::DIRS` (0..6).
     pub first: usize,
+    /// How many fins, 1 to 5.
     pub len: usize,
 }
 
 impl FinStrip {
+    /// The direction of the left neighbour, the one before the first fin.
     pub fn left(self) -> usize {
         (self.first + 5) % 6
     }
 
+    /// The direction of the right neighbour, the one after the last fin.
     pub fn right(self) -> usize {
         (self.first + self.len) % 6
     }
 
+    /// The direction of the top neighbour of a strip of three fins: opposite the middle fin.
     pub fn top(self) -> usize {
         (self.first + 4) % 6
     }
@@ -122,7 +138,13 @@ pub enum Role {
     /// FIXED_CENTER_IN_RING.
     Fixed,
     /// MOVED_CENTER_IN_RING of the OCCUPIED_2 hexagon `owner`, shifted by `shift` (Sec. 5.4).
-    Moved { owner: Key, shift: Point },
+    Moved {
+        /// The OCCUPIED_2 hexagon whose 1-ring the cell is in.
+        owner: Key,
+        /// What is added to the cell's centre: half the vector from `owner`'s centre to its
+        /// corner nearest the point (`ring_shift`), in input coordinates.
+        shift: Point,
+    },
 }
 
 /// The ring roles of all hexagons around occupied hexagons, and the occupied hexagons whose
@@ -130,12 +152,16 @@ pub enum Role {
 /// the shortest edge of Sec. 6.3 (they must be subdivided).
 #[derive(Debug, Clone, Default)]
 pub struct Rings {
+    /// The role of each cell in a ring of an occupied hexagon; a cell not listed has none.
     pub roles: FxHashMap<Key, Role>,
     /// Cells claimed by the fixed ring of one point and the moved 1-ring of another, with the
     /// moved role they lost (Sec. 5.1 lists FIXED_CENTER_IN_RING first), and cells of two
     /// moved 1-rings of points too far apart to split, with the second one's role.
     pub contested: FxHashMap<Key, Role>,
+    /// The occupied hexagons, each with its class (OCCUPIED_1 or OCCUPIED_2).
     pub occupied: FxHashMap<Key, Class>,
+    /// The occupied hexagons to subdivide because their rings collide, sorted by
+    /// `Key::packed`, without repeats.
     pub conflicts: Vec<Key>,
     /// The keys each cell's claims put into `conflicts` (so that `update` can redo a cell).
     pub conflict_at: FxHashMap<Key, Vec<Key>>,

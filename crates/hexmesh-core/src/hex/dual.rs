@@ -3,14 +3,16 @@
 //! it, boundary semi-hexagons count as virtual full hexagons, and the centre of an occupied
 //! hexagon is replaced by its input point.
 //!
-//! The triangles are found as a 1:4 / 1:2 refinement of lattice triangles (DESIGN.md): the
-//! triangle of three mutually adjacent full hexagons A, B, C of level k is split into the four
-//! triangles of level k + 1 when all three are subdivided, into two through the midpoint of AB
-//! (a full hexagon joined from two semi-hexagons) when exactly A and B are, and is a triangle of
-//! the mesh otherwise; the centre of a subdivided hexagon is the centre of its central child.
-//! Cells outside the bounding hexagon count as subdivided, and a triangle is kept only when its
-//! three centres lie in the closed bounding hexagon. The balancing rule guarantees that the
-//! hexagons of a kept triangle are not subdivided further.
+//! The centres of the hexagons of one level form a triangular lattice, and subdividing a hexagon
+//! refines the triangles around its centre 1:4 at their midpoints, so the triangles are found as a
+//! 1:4 / 1:2 refinement of lattice triangles: the triangle of three mutually adjacent full hexagons
+//! A, B, C of level k is split into the four triangles of level k + 1 when all three are
+//! subdivided, into two through the midpoint of AB (a full hexagon joined from two semi-hexagons)
+//! when exactly A and B are, and is a triangle of the mesh otherwise; the centre of a subdivided
+//! hexagon is the centre of its central child. Cells outside the bounding hexagon count as
+//! subdivided, and a triangle is kept only when its three centres lie in the closed bounding
+//! hexagon. The balancing rule guarantees that the hexagons of a kept triangle are not subdivided
+//! further.
 
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyIndex};

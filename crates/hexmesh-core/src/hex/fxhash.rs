@@ -39,6 +39,9 @@ impl Hasher for FxHasher {
     }
 }
 
+/// Builds `FxHasher`s for the standard collections.
 pub type FxBuild = BuildHasherDefault<FxHasher>;
+/// A `HashMap` hashed with `FxHasher`.
 pub type FxHashMap<K, V> = std::collections::HashMap<K, V, FxBuild>;
+/// A `HashSet` hashed with `FxHasher`.
 pub type FxHashSet<K> = std::collections::HashSet<K, FxBuild>;

@@ -127,6 +127,7 @@ impl IncrementalHex {
         final_dual(&self.hierarchy, &self.rings)
     }
 
+    /// The subdivision as it stands after the last insertion.
     pub fn hierarchy(&self) -> &Hierarchy {
         &self.hierarchy
     }

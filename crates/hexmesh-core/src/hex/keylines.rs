@@ -7,6 +7,7 @@ use crate::hex::lattice::Key;
 /// One cache line of slots of a `KeyLines` map: the values of a square block of cells of
 /// one level, `EMPTY` in the slots of cells that have none.
 pub trait Line: Copy {
+    /// What a slot holds.
     type Value: Copy + Eq;
     /// The block is `1 << SHIFT` cells a side.
     const SHIFT: i64;
@@ -14,7 +15,10 @@ pub trait Line: Copy {
     const EMPTY: Self::Value;
     /// A line of empty slots.
     const CLEAR: Self;
+    /// The slots, `1 << (2 · SHIFT)` of them; cell (i, j) of the block is slot
+    /// `i << SHIFT | j`, (i, j) taken modulo the block's side.
     fn slots(&self) -> &[Self::Value];
+    /// The slots, to write.
     fn slots_mut(&mut self) -> &mut [Self::Value];
 }
 
@@ -79,6 +83,7 @@ pub type KeyIndex = KeyLines<IndexLine>;
 pub type KeyBytes = KeyLines<ByteLine>;
 
 impl KeyBytes {
+    /// The value no key can have: an empty slot (255).
     pub const NONE: u8 = ByteLine::EMPTY;
 }
 
@@ -122,6 +127,7 @@ impl<L: Line> KeyLines<L> {
         )
     }
 
+    /// The value of `key`, if it has one.
     pub fn get(&self, key: &Key) -> Option<L::Value> {
         let (block, n) = Self::slot(*key);
         let b = *self.blocks.get(&block)?;
@@ -174,10 +180,12 @@ impl<L: Line> KeyLines<L> {
         self.len += new as usize;
     }
 
+    /// How many keys have a value.
     pub fn len(&self) -> usize {
         self.len
     }
 
+    /// Whether no key has a value.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }

@@ -217,6 +217,7 @@ impl KeySet {
         (block, 1u64 << (((key.i & 7) << 3) | (key.j & 7)))
     }
 
+    /// Whether `key` is in the set.
     pub fn contains(&self, key: &Key) -> bool {
         let (block, bit) = KeySet::slot(*key);
         self.word(block) & bit != 0
@@ -383,10 +384,12 @@ impl KeySet {
         self.maybe_densify(c.k);
     }
 
+    /// How many keys the set holds.
     pub fn len(&self) -> usize {
         self.len
     }
 
+    /// Whether the set holds no key.
     pub fn is_empty(&self) -> bool {
         self.len == 0
     }

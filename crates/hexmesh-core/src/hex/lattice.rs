@@ -25,14 +25,19 @@ pub const DIRS: [(i64, i64); 6] = [(1, 0), (0, 1), (-1, 1), (-1, 0), (0, -1), (1
 /// A lattice cell: the hexagon of level `k` centred at lattice point (i, j).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Key {
+    /// The level: 0 for the root, circumradius r_0/2^k.
     pub k: u8,
+    /// The coordinate along u = (3/2, √3/2), in units of r_k.
     pub i: i64,
+    /// The coordinate along v = (0, √3), in units of r_k.
     pub j: i64,
 }
 
 impl Key {
+    /// The root hexagon: level 0, centred at the origin o.
     pub const ROOT: Key = Key { k: 0, i: 0, j: 0 };
 
+    /// The cell of level `k` at lattice point (`i`, `j`).
     pub fn new(k: u8, i: i64, j: i64) -> Key {
         Key { k, i, j }
     }
@@ -143,15 +148,21 @@ impl Key {
 /// What `Key::parents` returns.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Parents {
+    /// The root has no parent.
     None,
+    /// A central child: the one hexagon it is the centre of.
     Central(Key),
+    /// An edge child: the two hexagons one level up that share the edge whose midpoint is its
+    /// centre.
     Edge(Key, Key),
 }
 
 /// Positions of lattice points of a given root hexagon.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Lattice {
+    /// The root's centre o.
     pub origin: Point,
+    /// The root's circumradius r_0 (level k has r_0/2^k).
     pub r0: f64,
     /// r_0·√3, rounded once, so that every y coordinate is one product and one sum.
     sqrt3_r0: f64,
@@ -162,6 +173,7 @@ pub struct Lattice {
 }
 
 impl Lattice {
+    /// The lattice whose level-0 cell is `root`.
     pub fn new(root: Hexagon) -> Lattice {
         Lattice {
             origin: root.center,
@@ -172,6 +184,7 @@ impl Lattice {
         }
     }
 
+    /// The level-0 hexagon (the one `new` was given).
     pub fn root(&self) -> Hexagon {
         Hexagon {
             center: self.origin,

@@ -87,6 +87,7 @@ pub struct Patch {
 }
 
 impl Patch {
+    /// Whether the patch changes nothing: no star dropped, no triangle added.
     pub fn is_empty(&self) -> bool {
         self.dropped.is_empty() && self.triangles.is_empty()
     }
@@ -96,8 +97,11 @@ impl Patch {
 /// common top neighbour T (n = 6: a blossom).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Chain {
+    /// The common top neighbour T.
     pub top: Key,
+    /// The direction s of the first hexagon from T, an index into `DIRS` (0..6).
     pub start: usize,
+    /// How many hexagons, n: 1 to 4, or 6 for a blossom (a run of 5 is subdivided).
     pub len: usize,
 }
 

@@ -230,6 +230,7 @@ impl IncrementalHexSimple {
         dual::extract(&self.hierarchy, Placement::Relocated)
     }
 
+    /// The subdivision as it stands after the last insertion.
     pub fn hierarchy(&self) -> &Hierarchy {
         &self.hierarchy
     }

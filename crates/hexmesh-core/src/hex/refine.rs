@@ -90,12 +90,23 @@ pub fn is_fin(h: &Hierarchy, cell: Key) -> bool {
 #[derive(Debug, Clone, PartialEq)]
 pub enum InsertError {
     /// The point has a NaN or infinite coordinate.
-    NonFinite { point: Point },
+    NonFinite {
+        /// The point as given.
+        point: Point,
+    },
     /// The point does not lie strictly inside the bounding hexagon, which a refined hierarchy
     /// cannot grow.
-    Outside { point: Point },
+    Outside {
+        /// The point as given.
+        point: Point,
+    },
     /// The point equals input point `existing`.
-    Duplicate { point: Point, existing: u32 },
+    Duplicate {
+        /// The point as given.
+        point: Point,
+        /// The 0-based index of the input point (and mesh vertex) it equals.
+        existing: u32,
+    },
     /// Refinement stopped (budget or precision).
     Stopped(Stop),
 }

@@ -125,6 +125,7 @@ impl Region {
         self.dist.iter().filter(|&(_, d)| d <= self.reach).count()
     }
 
+    /// Whether the region holds no cell.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

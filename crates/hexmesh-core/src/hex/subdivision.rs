@@ -5,8 +5,10 @@
 //!
 //! The state is the set of subdivided hexagons; whether a lattice cell is a full hexagon, a
 //! semi-hexagon (a fin of its unsubdivided parent) or not yet present follows from its parents
-//! (DESIGN.md). Cells whose centre lies outside the bounding hexagon count as subdivided, which
-//! makes the boundary semi-hexagons virtual full hexagons (Fig. 1).
+//! (`Key::parents`): an edge child is a full hexagon when both hexagons sharing its edge are
+//! subdivided, and a semi-hexagon when only one is. Cells whose centre lies outside the
+//! bounding hexagon count as subdivided, which makes the boundary semi-hexagons virtual full
+//! hexagons (Fig. 1).
 //!
 //! Point location rule: a point belongs to the cell reached by descending from the root. Inside
 //! a subdivided hexagon it goes to the child cell (central or edge) whose constructed hexagon
@@ -31,9 +33,17 @@ pub enum Cell {
     Absent,
     /// A semi-hexagon: the half of the cell inside `owner` (subdivided, or outside), which is a
     /// fin of `fin_of`, the unsubdivided full hexagon across its long edge.
-    Semi { owner: Key, fin_of: Key },
+    Semi {
+        /// The subdivided (or outside) parent holding the half.
+        owner: Key,
+        /// The unsubdivided parent it is a fin of.
+        fin_of: Key,
+    },
     /// A full hexagon (possibly a virtual one on the boundary).
-    Full { subdivided: bool },
+    Full {
+        /// Whether it is subdivided (not a leaf).
+        subdivided: bool,
+    },
 }
 
 /// Why the refinement stopped before it was done.
@@ -50,7 +60,9 @@ pub enum Stop {
 /// The hexagon hierarchy with the input points distributed over its leaves.
 #[derive(Debug, Clone)]
 pub struct Hierarchy {
+    /// The lattice of the bounding hexagon, which places every cell.
     pub lattice: Lattice,
+    /// The input points; point i (0-based) is vertex i of the relocated dual.
     pub points: Vec<Point>,
     subdivided: KeySet,
     /// Input points per leaf (full unsubdivided hexagon or semi-hexagon); only occupied leaves.
@@ -117,6 +129,7 @@ impl Hierarchy {
         !key.inside() || self.subdivided.contains(&key)
     }
 
+    /// True when the hexagon of `key` is subdivided (never for a cell outside the root).
     pub fn is_subdivided(&self, key: Key) -> bool {
         self.subdivided.contains(&key)
     }
@@ -165,6 +178,7 @@ impl Hierarchy {
         v
     }
 
+    /// True when the leaf `key` holds at least one input point.
     pub fn is_occupied(&self, key: Key) -> bool {
         self.occupied.contains(&key)
     }

@@ -1,4 +1,4 @@
-//! File formats (DESIGN.md "Files and command line"): Triangle's `.node`/`.poly` in
+//! File formats: Triangle's `.node`/`.poly` in
 //! ([`read_input`]), Triangle's `.node`/`.ele` in and out ([`read_mesh`], [`write_mesh`]),
 //! VTK legacy and Gmsh 4.1 out for ParaView, Gmsh and meshio, and SVG pictures.
 //! The CLI and the harness use only the functions of this module; `triangle` keeps the
@@ -40,6 +40,7 @@ pub enum Format {
 }
 
 impl Format {
+    /// Every format, in the order of the enum.
     pub const ALL: [Format; 4] = [Format::Triangle, Format::Vtk, Format::Msh, Format::Svg];
 
     /// Parses a command-line format name: "node" or "triangle", "vtk", "msh", "svg"

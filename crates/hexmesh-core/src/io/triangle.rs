@@ -24,6 +24,7 @@ const MAX_PREALLOCATION: usize = 1 << 16;
 /// A `.node` file, or the nodes section of a `.poly` file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodeFile {
+    /// The coordinates, in file order.
     pub points: Vec<Point>,
     /// Number of attributes per point, as in the header.
     pub attribute_count: usize,
@@ -70,7 +71,9 @@ impl NodeFile {
 /// they are kept so that a `.poly` file survives a round trip.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Region {
+    /// A point inside the region.
     pub point: Point,
+    /// The regional attribute (or, without `max_area`, Triangle's area bound).
     pub attribute: f64,
     /// Triangle uses the attribute as the area bound when this field is missing.
     pub max_area: Option<f64>,
@@ -85,11 +88,13 @@ pub struct PolyFile {
     pub segments: Vec<[u32; 2]>,
     /// Segment boundary markers, present when the segment header's marker flag is 1.
     pub segment_markers: Option<Vec<i64>>,
+    /// One point inside each hole, in file order.
     pub holes: Vec<Point>,
     /// `None` when the optional regional attributes section is absent.
     pub regions: Option<Vec<Region>>,
     /// 1-based source lines of the segments and holes; empty when not read from a file.
     pub segment_lines: Vec<usize>,
+    /// 1-based source line of each hole; empty when not read from a file.
     pub hole_lines: Vec<usize>,
 }
 
@@ -98,6 +103,7 @@ pub struct PolyFile {
 pub struct EleFile {
     /// Corners as written, numbered from the `.node` file's `first_index`.
     pub triangles: Vec<[u32; 3]>,
+    /// Number of attributes per triangle, as in the header.
     pub attribute_count: usize,
     /// One row of `attribute_count` values per triangle; empty when `attribute_count` is 0.
     pub attributes: Vec<Vec<f64>>,

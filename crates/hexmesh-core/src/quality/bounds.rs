@@ -1,4 +1,4 @@
-//! What each mesher promises, as checkable bounds (DESIGN.md "Checks", bounds per mesher).
+//! What each mesher promises, as checkable bounds, one set per mesher name.
 //! The hex bounds are Sußner & Greiner 2009: angles in [α, 90°] with tan α = 5/(3√3)
 //! (Sec. 6.1, Fig. 10), radius ratio ≤ 1.20787 (Sec. 6.2), shortest edge ≥ √7/(12√3)·d_min
 //! (Sec. 6.3), Delaunay (Sec. 6.4); on PSLG inputs they hold away from the segments (Sec. 7).

@@ -14,8 +14,11 @@ use crate::geom::{Dist2, Point};
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct ClosestPair {
+    /// The smaller 0-based index.
     pub first: usize,
+    /// The larger 0-based index.
     pub second: usize,
+    /// Their Euclidean distance, d_min.
     pub distance: f64,
 }
 

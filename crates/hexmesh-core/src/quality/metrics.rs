@@ -1,4 +1,4 @@
-//! Quality figures of a triangle mesh (DESIGN.md "Checks"): angles and their histogram, the
+//! Quality figures of a triangle mesh: angles and their histogram, the
 //! paper's "aspect ratio", which is Verdict's radius ratio R/(2r) (Sußner & Greiner 2009,
 //! Sec. 6.2: 1.20787 for the 43.9°/46.1°/90° triangle), edge ratio, shortest edge over d_min
 //! (Sec. 6.3), and the Delaunay property (Sec. 6.4) by the exact empty-circle test.
@@ -17,7 +17,9 @@ use crate::quality::validate::topology;
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Worst {
+    /// The figure (angles in degrees).
     pub value: f64,
+    /// The 0-based index of a triangle reaching it (the first, in triangle order).
     pub triangle: usize,
 }
 
@@ -25,6 +27,7 @@ pub struct Worst {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct DelaunayEdge {
+    /// The edge's two vertex indices (0-based).
     pub edge: [u32; 2],
     /// The two triangles sharing the edge; the first traverses `edge` in its order.
     pub triangles: [usize; 2],
@@ -37,14 +40,18 @@ pub struct DelaunayEdge {
 pub struct Metrics {
     /// Vertices of the mesh (for a part of a mesh: the vertices its triangles use).
     pub vertices: usize,
+    /// Triangles of the mesh (or the part), those left out of the figures included.
     pub triangles: usize,
+    /// The smallest angle of any triangle.
     pub min_angle: Option<Worst>,
+    /// The largest angle of any triangle.
     pub max_angle: Option<Worst>,
     /// Counts of all triangle angles in 1° bins: bin k holds angles in [k°, k+1°), 180° in
     /// bin 179.
     pub angle_histogram: Vec<u64>,
     /// Verdict's radius ratio R/(2r): circumradius over incircle diameter, 1 for equilateral.
     pub radius_ratio_max: Option<Worst>,
+    /// The mean radius ratio over the triangles.
     pub radius_ratio_mean: Option<f64>,
     /// Longest over shortest edge of a triangle.
     pub edge_ratio_max: Option<Worst>,
@@ -52,6 +59,7 @@ pub struct Metrics {
     pub shortest_edge: Option<Worst>,
     /// The smallest distance between two input points.
     pub d_min: Option<f64>,
+    /// `shortest_edge` over `d_min`; the paper's bound for `hex` is √7/(12√3) ≈ 0.12729.
     pub shortest_edge_over_d_min: Option<f64>,
     /// Interior edges (shared by two triangles in opposite directions).
     pub interior_edges: usize,
@@ -67,7 +75,8 @@ pub struct Metrics {
     pub covered_area: f64,
 }
 
-/// Slack of the angle-sum form of the Delaunay test, in degrees (DESIGN.md "Checks").
+/// Slack of the angle-sum form of the Delaunay test, in degrees: an edge whose two opposite
+/// angles sum to more than 180° plus this is a violation rounding cannot explain.
 pub const DELAUNAY_ANGLE_SLACK_DEG: f64 = 1e-7;
 
 /// Angles (degrees), radius ratio, edge ratio and edge lengths of one triangle.
@@ -75,8 +84,11 @@ pub const DELAUNAY_ANGLE_SLACK_DEG: f64 = 1e-7;
 pub struct TriangleShape {
     /// Angle at each corner, in degrees.
     pub angles: [f64; 3],
+    /// R/(2r), 1 for equilateral; infinite when degenerate.
     pub radius_ratio: f64,
+    /// Longest over shortest edge.
     pub edge_ratio: f64,
+    /// The shortest edge's length.
     pub shortest_edge: f64,
 }
 
@@ -290,6 +302,7 @@ pub struct SplitMetrics {
     pub band: f64,
     /// Triangles that touch a segment or come within `band` of one.
     pub near: Metrics,
+    /// The other triangles, where the interior bounds apply.
     pub interior: Metrics,
     /// Indices of the near triangles, ascending.
     pub near_triangles: Vec<usize>,

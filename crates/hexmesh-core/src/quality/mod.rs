@@ -1,4 +1,4 @@
-//! Checks and figures for triangle meshes (DESIGN.md "Checks"): is the mesh valid, how good
+//! Checks and figures for triangle meshes: is the mesh valid, how good
 //! are its triangles, and does it keep what its mesher promises.
 
 /// The bounds each mesher promises, by name.

@@ -101,6 +101,7 @@ pub struct Use {
     pub allowance: f64,
     /// The figure itself.
     pub value: f64,
+    /// The triangle's 0-based index.
     pub triangle: usize,
 }
 
@@ -108,7 +109,9 @@ pub struct Use {
 /// nearest to breaking it (largest used − allowance). The bound holds when `nearest` does.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Fit {
+    /// The figure using the largest allowance.
     pub most: Use,
+    /// The figure with the largest `used − allowance`.
     pub nearest: Use,
 }
 
@@ -215,12 +218,13 @@ pub fn refusal_near(
 /// factors are far wider than the rounding of `atan2` and of the degree conversion (below
 /// 1e-14°), and far narrower than any slack it is used with (1e-7°).
 #[derive(Debug, Clone, Copy)]
-pub struct AngleWindow {
+pub(crate) struct AngleWindow {
     tan_lo: f64,
     tan_hi: f64,
 }
 
 impl AngleWindow {
+    /// The window [lo − slack, hi + slack], all in degrees, for lo < 90° ≤ hi.
     pub fn new(lo: f64, hi: f64, slack: f64) -> AngleWindow {
         debug_assert!(lo < 90.0 && hi >= 90.0, "[{lo}, {hi}]");
         AngleWindow {
@@ -229,6 +233,8 @@ impl AngleWindow {
         }
     }
 
+    /// True when every angle of the triangle `t` is clearly inside the window; false means
+    /// the angles must be measured.
     pub fn clearly_within(&self, t: &[Point; 3]) -> bool {
         (0..3).all(|m| {
             let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);

@@ -1,6 +1,6 @@
 //! The verdict on one mesh: validity plus every bound of a `Bounds`, each with its value, its
 //! limit and, when it fails, the worst triangle — what `hexmesh verify` prints as a table and,
-//! with `--json`, as serde JSON (DESIGN.md "Checks", "Files and command line").
+//! with `--json`, as serde JSON.
 
 use std::fmt;
 
@@ -40,7 +40,9 @@ pub(crate) fn on_segment_tolerance(input: &Pslg) -> f64 {
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 #[cfg_attr(feature = "serde", serde(rename_all = "snake_case"))]
 pub enum Status {
+    /// The bound holds (up to the rounding allowance).
     Ok,
+    /// The bound fails.
     Fail,
     /// The check needs something that is missing (e.g. the input, for d_min).
     Skipped,
@@ -50,7 +52,9 @@ pub enum Status {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct WorstTriangle {
+    /// The triangle's 0-based index.
     pub triangle: usize,
+    /// Its corners, in the triangle's (counter-clockwise) order.
     pub corners: [Point; 3],
     /// The figure at that triangle (angle, ratio, ...).
     pub value: f64,
@@ -62,10 +66,13 @@ pub struct WorstTriangle {
 pub struct Check {
     /// What was checked, with its unit.
     pub what: String,
+    /// The measured figure; `None` when there is none (no triangles, or skipped).
     pub value: Option<f64>,
     /// "≥", "≤" or "=".
     pub relation: String,
+    /// The bound the figure is held to, in the unit of `what`.
     pub limit: f64,
+    /// The outcome.
     pub status: Status,
     /// For a failed bound: the triangle where it fails worst.
     pub worst: Option<WorstTriangle>,
@@ -80,7 +87,9 @@ pub struct Check {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
 pub struct Rounding {
+    /// How far the figure lies beyond its bound.
     pub used: f64,
+    /// How far rounding of its corners may move it.
     pub allowance: f64,
 }
 
@@ -90,9 +99,13 @@ pub struct Rounding {
 pub struct Verdict {
     /// The name of the bounds checked, if any.
     pub bounds: Option<String>,
+    /// The validity checks run (one disc, conformity to the segments).
     pub options: ValidateOptions,
+    /// Every validity violation found; empty when the mesh is valid.
     pub violations: Vec<Violation>,
+    /// The rows: validity first, then one per bound.
     pub checks: Vec<Check>,
+    /// The figures of the whole mesh.
     pub metrics: Metrics,
     /// Near-segment and interior figures apart, for inputs with segments.
     pub split: Option<SplitMetrics>,

@@ -36,6 +36,7 @@ use crate::mesher::{Budget, MeshRun, Mesher, Params};
 /// of the modified rule (Definition 3.2 / rule 4.1).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Lsb {
+    /// Plain longest-side bisection (mesher `lsb-plain`) instead of the modified rule.
     pub plain: bool,
 }
 

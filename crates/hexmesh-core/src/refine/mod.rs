@@ -26,8 +26,8 @@ use crate::mesh::Pslg;
 use crate::mesher::Budget;
 
 /// The domain a refinement mesher works in: a PSLG as given, a point set inside its bounding
-/// hexagon (`Pslg::reference_domain`, DESIGN.md "Datasets"), so that both meshers mesh the
-/// same region as the reference meshers.
+/// hexagon with the hexagon's corners and edges added (`Pslg::reference_domain`), so that
+/// these meshers mesh the same region as the reference meshers.
 pub(crate) fn domain(input: &Pslg) -> Pslg {
     input.reference_domain()
 }

@@ -48,7 +48,10 @@ const CONSTRUCTIVE_CAP: usize = 2_000_000;
 /// instead of the Sec. 6 iteration; `max_rounds` bounds the Sec. 6 rounds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Saalfeld {
+    /// The constructive refinement of Sec. 5 (mesher `saalfeld-sec5`) instead of the Sec. 6
+    /// iteration.
     pub constructive: bool,
+    /// The most rounds of the Sec. 6 iteration before it stops, incomplete (default 1000).
     pub max_rounds: u32,
 }
 

@@ -34,7 +34,6 @@
 use std::collections::BTreeSet;
 
 use super::lattice::{half_in_hexagon, hexnorm, Cell, MAX_LEVEL};
-use super::patterns::hanging;
 use super::tree::{Cover, Guard, KeyMap, Stop, Tree};
 use crate::geom::angle_deg;
 
@@ -301,7 +300,7 @@ pub fn centre_points(
                 && patch
                     .halves()
                     .iter()
-                    .any(|&(c, h)| hanging(tree, c, h).iter().any(|&s| s))
+                    .any(|&(c, h)| tree.hanging(c, h).iter().any(|&s| s))
             {
                 to_split.insert(leaf);
             }

@@ -85,7 +85,7 @@ fn leaf_half(b: &mut Builder, tree: &Tree, c: Cell, half: u8) {
         return;
     }
     let corners = half_corners(c, half);
-    let split = hanging(tree, c, half);
+    let split = tree.hanging(c, half);
     // Work one level finer, where the side midpoints are lattice vertices.
     let l = c.level + 1;
     let v = corners.map(|(a, bb)| (2 * a, 2 * bb));
@@ -109,28 +109,6 @@ fn leaf_half(b: &mut Builder, tree: &Tree, c: Cell, half: u8) {
             b.lattice_triangle(l, [m2, m1, v[2]]);
             b.lattice_triangle(l, [m0, m1, m2]);
         }
-    }
-}
-
-/// Which sides of a leaf half carry a splitting point, in corner order (edge e runs from
-/// corner e to corner e + 1 of `leaf_half`'s corners): a split same-size neighbour across a
-/// rhomb side, or, on the diagonal, the other half cut into four (both its sides split).
-pub(super) fn hanging(tree: &Tree, c: Cell, half: u8) -> [bool; 3] {
-    let (bottom, right, top, left) = ((0, -1), (1, 0), (0, 1), (-1, 0));
-    if half == 0 {
-        let upper_red = tree.side_split(c, right) && tree.side_split(c, top);
-        [
-            tree.side_split(c, bottom),
-            upper_red,
-            tree.side_split(c, left),
-        ]
-    } else {
-        let lower_red = tree.side_split(c, bottom) && tree.side_split(c, left);
-        [
-            tree.side_split(c, right),
-            tree.side_split(c, top),
-            lower_red,
-        ]
     }
 }
 
@@ -237,18 +215,5 @@ mod tests {
         assert!(equilateral > 0 && right > 0);
         let area: f64 = mesh.area();
         assert!((area - 1.5 * 3f64.sqrt()).abs() < 1e-12);
-    }
-
-    #[test]
-    fn hanging_marks_the_diagonal_of_a_half_beside_a_red_half() {
-        let mut tree = Tree::new(vec![], 0);
-        tree.split(Cell::ROOT).unwrap();
-        tree.split(Cell::new(1, 1, 0)).unwrap();
-        tree.split(Cell::new(1, 0, 1)).unwrap();
-        // Cell (1,0,0) has its right and top neighbours split: its upper half is cut into four,
-        // its lower half has the splitting point on the diagonal.
-        let c = Cell::new(1, 0, 0);
-        assert_eq!(hanging(&tree, c, 1), [true, true, false]);
-        assert_eq!(hanging(&tree, c, 0), [false, true, false]);
     }
 }

@@ -206,6 +206,30 @@ impl Tree {
         self.cover(c.offset(side.0, side.1)) == Cover::Split
     }
 
+    /// Which sides of half `half` of leaf `c` carry a splitting point, in corner order (edge
+    /// e runs from corner e to corner e + 1 of `lattice::half_corners(c, half)`): a split
+    /// same-size neighbour across a rhomb side, or, on the diagonal, the other half cut into
+    /// four (both its sides split). Triangulating a leaf (`patterns`) and placing a moved
+    /// vertex (`centring`) both ask it.
+    pub fn hanging(&self, c: Cell, half: u8) -> [bool; 3] {
+        let (bottom, right, top, left) = ((0, -1), (1, 0), (0, 1), (-1, 0));
+        if half == 0 {
+            let upper_red = self.side_split(c, right) && self.side_split(c, top);
+            [
+                self.side_split(c, bottom),
+                upper_red,
+                self.side_split(c, left),
+            ]
+        } else {
+            let lower_red = self.side_split(c, bottom) && self.side_split(c, left);
+            [
+                self.side_split(c, right),
+                self.side_split(c, top),
+                lower_red,
+            ]
+        }
+    }
+
     fn split_sides(&self, c: Cell) -> usize {
         SIDES.iter().filter(|&&s| self.side_split(c, s)).count()
     }
@@ -380,5 +404,18 @@ mod tests {
             ..Budget::default()
         });
         assert!(matches!(tree.split_crowded(&guard), Err(Stop::Budget(_))));
+    }
+
+    #[test]
+    fn hanging_marks_the_diagonal_of_a_half_beside_a_red_half() {
+        let mut tree = Tree::new(vec![], 0);
+        tree.split(Cell::ROOT).unwrap();
+        tree.split(Cell::new(1, 1, 0)).unwrap();
+        tree.split(Cell::new(1, 0, 1)).unwrap();
+        // Cell (1,0,0) has its right and top neighbours split: its upper half is cut into four,
+        // its lower half has the splitting point on the diagonal.
+        let c = Cell::new(1, 0, 0);
+        assert_eq!(tree.hanging(c, 1), [true, true, false]);
+        assert_eq!(tree.hanging(c, 0), [false, true, false]);
     }
 }

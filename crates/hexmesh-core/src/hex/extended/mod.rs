@@ -238,9 +238,13 @@ impl Mesher for Hex {
 /// The result of `mesh_extended`.
 #[derive(Debug, Clone)]
 pub struct ExtendedRun {
+    /// The final subdivision.
     pub hierarchy: Hierarchy,
+    /// Its relocated dual; after a budget stop, the plain dual (centres unmoved).
     pub mesh: TriMesh,
+    /// Why a budget stopped the refinement ("stopped by the …"); `None` when it finished.
     pub stop: Option<String>,
+    /// What the run did.
     pub stats: ExtendedStats,
     /// The contested ring cells moved after all and the cells placed by `settle_contested`.
     pub rings: RingState,

@@ -9,7 +9,8 @@ use crate::geom::{dist, orient2d_scaled, scale_exponent, scale_point, Point};
 use crate::mesh::{Pslg, TriMesh};
 
 /// Every input point must be a vertex (bit-exact); with `conforming`, every input segment a
-/// chain of mesh edges whose vertices lie on it (within rounding), walked from one endpoint to the other.
+/// chain of mesh edges whose vertices lie on it (within rounding), walked from one endpoint to
+/// the other.
 pub(super) fn input_conformity(
     mesh: &TriMesh,
     topo: &Topology,

@@ -15,7 +15,7 @@
 //! edges around it (Stokes), so the mesh is one sheet exactly when that winding is 1 just
 //! inside every boundary edge and the boundary edges do not cross.
 //!
-//! One check a file, run in this order by [`validate`]:
+//! One check a file, run in this order by [`validate()`]:
 //! - `violation`: the [`Violation`] enum, its messages and kind names;
 //! - `topology`: the edges of the triangles grouped into boundary, interior, overused and
 //!   same-direction edges;

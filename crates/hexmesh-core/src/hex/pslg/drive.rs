@@ -1,0 +1,179 @@
+//! The driver and the self-check of the finished mesh (ours): rounds of refinement (the rules
+//! of Sec. 5.2 and 7.2), mesh extraction with the segments inserted, and a check. Every
+//! triangle must be counter-clockwise with positive area (exact), every segment a chain of mesh
+//! edges, every input point a vertex (`quality::validate`); triangles with no corner on a
+//! segment must meet the Sec. 6 angle bounds and the exact empty-circle test. Where the bounds
+//! fail, the coarsest hexagon of the offending triangle is subdivided and everything runs
+//! again, at most `MAX_ROUNDS` times and while the hexagons grow less than `MAX_GROWTH`-fold;
+//! when validity fails or the rounds run out, the mesher returns an error naming the place.
+
+use super::cavity::{insert_segments, Built};
+use super::rules::{apply, apply_rules};
+use super::{leaf_of_vertex, PslgStats, MAX_GROWTH, MAX_ROUNDS, NAME};
+use crate::error::Error;
+use crate::geom::{incircle, Point};
+use crate::hex::classify::rings;
+use crate::hex::dual::{self, Placement};
+use crate::hex::extended::{around, relocations};
+use crate::hex::lattice::{Key, KeySet};
+use crate::hex::refine::refine_simple;
+use crate::hex::subdivision::{Hierarchy, Stop};
+use crate::mesh::{Pslg, TriMesh};
+use crate::quality::{validate, ValidateOptions};
+
+/// Why the driver stopped.
+pub(super) enum Fail {
+    /// A budget ran out, or the points are too close for f64.
+    Stop(Stop),
+    /// Anything else: the error to return.
+    Error(Error),
+}
+
+impl From<Stop> for Fail {
+    fn from(s: Stop) -> Fail {
+        Fail::Stop(s)
+    }
+}
+
+impl From<Error> for Fail {
+    fn from(e: Error) -> Fail {
+        Fail::Error(e)
+    }
+}
+
+/// Refines, meshes and checks in rounds until the mesh passes its self-check (module docs);
+/// returns the mesh and, for each vertex, whether it lies on a segment.
+pub(super) fn drive(
+    h: &mut Hierarchy,
+    input: &Pslg,
+    segments: &[[Point; 2]],
+    stats: &mut PslgStats,
+) -> std::result::Result<(TriMesh, Vec<bool>), Fail> {
+    refine_simple(h)?;
+    let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
+    let mut first_size = None;
+    loop {
+        stats.rounds += 1;
+        let crossed = apply_rules(h, input, segments, candidates, stats)?;
+        let first = *first_size.get_or_insert(h.full_leaves);
+        if h.full_leaves > MAX_GROWTH * first {
+            return Err(Fail::Error(Error::mesher(
+                NAME,
+                format!(
+                    "the self-check's subdivisions grew the hexagons from {first} to {} \
+                     without repairing the triangles away from the segments; giving up",
+                    h.full_leaves
+                ),
+            )));
+        }
+        stats.crossed = crossed.len();
+        stats.crossed_radius = crossed
+            .keys()
+            .map(|k| h.lattice.radius(k.k))
+            .fold(0.0, f64::max);
+        let r = rings(h);
+        // MOVED_CENTER_3 hexagons keep their rebuilt dual (`mc3`); Sec. 7.2 keeps them away
+        // from the segments, so the cavities below never cut into one.
+        let (moved, patch) = relocations(h, &r);
+        let (dual, keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+        let built = insert_segments(h, input, segments, &crossed, dual, keys, stats)?;
+        let bad = interior_offenders(&built);
+        if bad.is_empty() {
+            let violations = validate(
+                &built.mesh,
+                Some(input),
+                &ValidateOptions {
+                    single_component: false,
+                    conforming: true,
+                },
+            );
+            if let Some(v) = violations.first() {
+                return Err(Fail::Error(Error::mesher(
+                    NAME,
+                    format!("internal error: the PSLG mesh is not valid: {v}"),
+                )));
+            }
+            return Ok((built.mesh, built.on_segment));
+        }
+        if stats.rounds >= MAX_ROUNDS {
+            let t = bad[0];
+            let c = built.mesh.corners(t);
+            return Err(Fail::Error(Error::mesher(
+                NAME,
+                format!(
+                    "after {MAX_ROUNDS} rounds of subdivision, triangle ({:?}, {:?}, {:?}) \
+                     away from the segments ({}) still breaks the angle or empty-circle bound",
+                    c[0],
+                    c[1],
+                    c[2],
+                    if built.cavity[t] {
+                        "in the re-triangulated neighbourhood of a segment"
+                    } else {
+                        "in the hexagon dual"
+                    }
+                ),
+            )));
+        }
+        let mut split: Vec<Key> = bad
+            .iter()
+            .filter_map(|&t| {
+                built.mesh.triangles[t]
+                    .iter()
+                    .map(|&v| built.keys[v as usize])
+                    .min_by_key(|k| (k.k, *k))
+            })
+            .map(|k| leaf_of_vertex(h, k))
+            .collect();
+        split.sort();
+        split.dedup();
+        stats.verify_splits += apply(h, split)?;
+        candidates = around(&h.log);
+    }
+}
+
+/// True when the triangle abc breaks the Sec. 6 angle bounds by more than the extended
+/// refinement's self-check allows (its slack and the rounding of the corners,
+/// `extended::breaks_bounds`).
+pub(super) fn breaks_angle_bounds(c: [Point; 3]) -> bool {
+    crate::hex::extended::breaks_bounds(&c)
+}
+
+/// Triangles with no corner on a segment that break the Sec. 6 angle bounds, or sit on an edge
+/// of two such triangles that fails the exact empty-circle test.
+fn interior_offenders(b: &Built) -> Vec<usize> {
+    let mesh = &b.mesh;
+    let interior: Vec<bool> = mesh
+        .triangles
+        .iter()
+        .map(|t| t.iter().all(|&v| !b.on_segment[v as usize]))
+        .collect();
+    let mut bad: Vec<usize> = Vec::new();
+    for (t, _) in interior.iter().enumerate().filter(|(_, &i)| i) {
+        if breaks_angle_bounds(mesh.corners(t)) {
+            bad.push(t);
+        }
+    }
+    let mut edges: Vec<(u32, u32, usize, u32)> = Vec::new();
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if !interior[t] {
+            continue;
+        }
+        for e in 0..3 {
+            let (u, v) = (tri[e], tri[(e + 1) % 3]);
+            edges.push((u.min(v), u.max(v), t, tri[(e + 2) % 3]));
+        }
+    }
+    edges.sort_unstable();
+    for w in edges.windows(2) {
+        if (w[0].0, w[0].1) == (w[1].0, w[1].1) {
+            let [p, q, r] = mesh.corners(w[0].2);
+            if incircle(p, q, r, mesh.vertices[w[1].3 as usize]) > 0.0 {
+                bad.push(w[0].2);
+                bad.push(w[1].2);
+            }
+        }
+    }
+    bad.sort_unstable();
+    bad.dedup();
+    bad
+}

@@ -91,6 +91,11 @@ struct FuzzArgs {
     /// Seed of the case generator: the same seed gives the same cases.
     #[arg(long, default_value_t = 20_261_123)]
     seed: u64,
+    /// Directory the input of each failing case is written into, as a Triangle .node file
+    /// (created if missing; at most a hundred files). Without it no files are written: the
+    /// failing cases are only reported, and `--seed` with the case number reproduces them.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -501,12 +506,17 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         None
     };
     let step = (args.cases / 20).max(1);
-    let summary =
-        crate::fuzz::fuzz_campaign(&args.mesher, args.cases, args.seed, |done| match &bar {
+    let summary = crate::fuzz::fuzz_campaign(
+        &args.mesher,
+        args.cases,
+        args.seed,
+        args.out.as_deref(),
+        |done| match &bar {
             Some(bar) => bar.set_position(done),
             None if done % step == 0 => eprintln!("{done}/{} cases", args.cases),
             None => {}
-        });
+        },
+    );
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }

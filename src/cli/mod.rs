@@ -1,4 +1,5 @@
-//! The `hexmesh` command line (DESIGN.md "Files and command line"). Exit codes: 0 when all is
+//! The `hexmesh` command line (`hexmesh --help`; reads Triangle .node/.poly files, writes
+//! Triangle, VTK, Gmsh and SVG). Exit codes: 0 when all is
 //! well, 1 when `verify` finds a failed check or a mesher stops short, 2 on bad input or usage.
 
 use std::path::{Path, PathBuf};
@@ -393,7 +394,7 @@ fn refuse_to_overwrite_input(args: &MeshArgs, formats: &[crate::io::Format]) -> 
 /// What `mesh` holds a finished mesh to: the mesher's own promises (`Bounds::parse` of its
 /// name) and, for a reference, the minimum angle it was asked for (its default one when
 /// none was). Returns the bounds' name and the first problem when the mesh fails them: no
-/// mesh is passed on as good without being checked (DESIGN.md "Bad input").
+/// mesh is passed on as good without being checked.
 fn failed_promise(
     mesher: &str,
     input: &Pslg,

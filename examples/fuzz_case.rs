@@ -9,7 +9,14 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .expect("a case number");
     let (family, input) = hexmesh::fuzz::generate_case(seed, case);
-    match hexmesh::fuzz::write_failure("hex", seed, case, family, &input) {
+    match hexmesh::fuzz::write_failure(
+        std::path::Path::new("fuzz-failures"),
+        "hex",
+        seed,
+        case,
+        family,
+        &input,
+    ) {
         Ok(path) => println!("{}", path.display()),
         Err(e) => eprintln!("cannot write the case: {e}"),
     }

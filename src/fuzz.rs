@@ -1,10 +1,11 @@
 //! A seeded fuzz campaign for the hexagonal meshers: random point sets of the families that
 //! stress paper 000's guarantees (uniform, clustered, collinear, near-duplicates, extreme
 //! scales, far translations, points exactly on hexagon centres, edges and corners), each meshed
-//! and checked against the bounds the mesher promises (Sec. 4.3 for `hex-simple`, Sec. 6 for
-//! `hex`). The first failing case is written out as a Triangle .node file.
+//! and checked by `quality::verdict` against the bounds the mesher promises
+//! (`quality::Bounds::parse`: Sec. 4.3 for `hex-simple`, Sec. 6 for `hex`). Failing cases are
+//! written out as Triangle .node files when the campaign is given a directory for them.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use rand::RngExt;
 use rand_pcg::Pcg64;
@@ -25,19 +26,23 @@ pub struct FuzzSummary {
     /// Cases refused as too close for f64 at their coordinates (`InputError::Rounding`,
     /// `NearBoundary` or `Range`).
     pub refused: u64,
-    /// Meshes by the largest rounding allowance one of their angles uses (degrees beyond the
-    /// promised bounds, `quality::rounding`), in the bins of `ROUNDING_BINS`.
+    /// Finished meshes (failing ones too) by the largest rounding allowance one of their
+    /// angles uses (degrees beyond the promised angle bounds, `quality::rounding`, as the
+    /// verdict's angle checks report it), in the bins of `ROUNDING_BINS`; none are counted
+    /// for a mesher that promises no angles.
     pub rounding_used: [u64; ROUNDING_BINS.len()],
     pub failures: u64,
-    /// The smallest and largest angle seen over all meshes, in degrees.
+    /// The smallest and largest angle seen over all meshes that passed, in degrees.
     pub worst_min_angle: f64,
     pub worst_max_angle: f64,
+    /// The most triangles in one mesh that passed.
     pub max_triangles: usize,
     /// The largest radius ratio R/(2r) seen over every finished mesh (failing ones too).
     pub worst_radius_ratio: f64,
-    /// The smallest shortest-edge / d_min seen (inputs with at least two points).
+    /// The smallest shortest-edge / d_min seen (inputs with at least two points, failing
+    /// meshes too).
     pub worst_edge_over_d_min: f64,
-    /// The largest number of exact empty-circle violations in one mesh.
+    /// The largest number of exact empty-circle violations in one mesh (failing ones too).
     pub max_delaunay_violations: usize,
     /// Cases, refusals and failures per family, in the order of `FAMILIES`.
     pub families: Vec<FamilyCounts>,
@@ -82,7 +87,8 @@ pub struct FuzzFailure {
     pub case: u64,
     pub family: &'static str,
     pub message: String,
-    /// Where the input was written (a Triangle .node file), when writing worked.
+    /// Where the input was written (a Triangle .node file), when the campaign had a directory
+    /// for it and writing worked.
     pub path: Option<PathBuf>,
 }
 
@@ -103,29 +109,57 @@ pub const FAMILIES: [&str; 10] = [
     "projected",
 ];
 
-/// The angle bounds (degrees) a mesher promises, for the meshers this campaign knows.
-pub fn angle_bounds(mesher: &str) -> Option<(f64, f64)> {
-    match mesher {
-        "hex-simple" => Some((30.0, 120.0)),
-        "hex" => Some(((5.0 / (3.0 * 3f64.sqrt())).atan().to_degrees(), 90.0)),
-        "rhomb" => Some((30.0, 90.0)),
-        _ => None,
-    }
-}
-
 /// Runs `cases` random cases through the mesher `mesher` (any registered name, or
 /// `hex-simple`), seeded by `seed`; `progress` is called after each case with the number done.
+/// The input of each failing case is written into `out` (`write_failure`) when it is given;
+/// without it nothing is written and the failures are only reported.
 pub fn fuzz_campaign(
     mesher: &str,
     cases: u64,
     seed: u64,
+    out: Option<&Path>,
     progress: impl FnMut(u64),
 ) -> FuzzSummary {
-    fuzz_campaign_sized(mesher, cases, seed, MAX_POINTS, progress)
+    fuzz_campaign_sized(mesher, cases, seed, MAX_POINTS, out, progress)
 }
 
 /// Most points in one generated case (before duplicates are dropped).
 pub const MAX_POINTS: usize = 80;
+
+/// The figures of one finished mesh the summary keeps, read off its verdict.
+struct Figures {
+    min_angle: Option<f64>,
+    max_angle: Option<f64>,
+    radius_ratio: Option<f64>,
+    edge_over_d_min: Option<f64>,
+    delaunay_violations: usize,
+    /// The largest rounding allowance an angle used against the angle bounds, when the
+    /// bounds have any.
+    rounding_used: Option<f64>,
+}
+
+impl Figures {
+    fn of(v: &quality::Verdict) -> Figures {
+        let m = &v.metrics;
+        // The verdict checks the smallest and the largest angle apart; an angle uses
+        // allowance against one of them at most, so the larger of the two is what it uses
+        // against both.
+        let rounding_used = v
+            .checks
+            .iter()
+            .filter(|c| c.what == "min angle (deg)" || c.what == "max angle (deg)")
+            .filter_map(|c| c.rounding.map(|r| r.used))
+            .reduce(f64::max);
+        Figures {
+            min_angle: m.min_angle.map(|w| w.value),
+            max_angle: m.max_angle.map(|w| w.value),
+            radius_ratio: m.radius_ratio_max.map(|w| w.value),
+            edge_over_d_min: m.shortest_edge_over_d_min,
+            delaunay_violations: m.delaunay_violations,
+            rounding_used,
+        }
+    }
+}
 
 /// `fuzz_campaign` with at most `max_points` points per case (`generate_sized_case`): small
 /// sets mesh fast enough for a test of a thousand cases.
@@ -134,6 +168,7 @@ pub fn fuzz_campaign_sized(
     cases: u64,
     seed: u64,
     max_points: usize,
+    out: Option<&Path>,
     mut progress: impl FnMut(u64),
 ) -> FuzzSummary {
     let mut summary = FuzzSummary {
@@ -178,7 +213,9 @@ pub fn fuzz_campaign_sized(
             }
         },
     };
-    let bounds = angle_bounds(mesher);
+    // What the mesher promises (`verify --bounds NAME`); a name without bounds of its own
+    // is checked for validity alone.
+    let promised = quality::Bounds::parse(mesher).ok();
     for case in 0..cases {
         let (family, input) = generate_sized_case(seed, case, max_points);
         let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
@@ -188,38 +225,35 @@ pub fn fuzz_campaign_sized(
                 "stopped early without a budget: {:?}",
                 run.stop_reason
             )),
-            Ok(run) => check_mesh(&run.mesh, &input.points, bounds)
-                .and_then(|stats| {
-                    if let Some((lo, hi)) = bounds {
-                        let tris = (0..run.mesh.triangles.len()).map(|t| (t, run.mesh.corners(t)));
-                        let used =
-                            quality::rounding::angle_fit(tris, lo, hi).map_or(0.0, |f| f.most.used);
-                        summary.rounding_used[rounding_bin(used)] += 1;
+            Ok(run) => {
+                // Validity (one disc, every input point a vertex bit for bit) and every bound
+                // the mesher promises, each angle and ratio up to its rounding allowance.
+                let v = quality::verdict(&run.mesh, Some(&input), promised.as_ref());
+                let f = Figures::of(&v);
+                if let Some(used) = f.rounding_used {
+                    summary.rounding_used[rounding_bin(used)] += 1;
+                }
+                if let Some(w) = f.radius_ratio {
+                    summary.worst_radius_ratio = summary.worst_radius_ratio.max(w);
+                }
+                if let Some(e) = f.edge_over_d_min {
+                    summary.worst_edge_over_d_min = summary.worst_edge_over_d_min.min(e);
+                }
+                summary.max_delaunay_violations =
+                    summary.max_delaunay_violations.max(f.delaunay_violations);
+                if v.passed() {
+                    if let Some(a) = f.min_angle {
+                        summary.worst_min_angle = summary.worst_min_angle.min(a);
                     }
-                    // The harness's own checks too: validity, one disc, and every bound the
-                    // mesher promises (radius ratio, shortest edge, Delaunay for `hex`).
-                    let promised = quality::Bounds::parse(mesher).ok();
-                    let v = quality::verdict(&run.mesh, Some(&input), promised.as_ref());
-                    let mt = &v.metrics;
-                    if let Some(w) = mt.radius_ratio_max {
-                        summary.worst_radius_ratio = summary.worst_radius_ratio.max(w.value);
+                    if let Some(a) = f.max_angle {
+                        summary.worst_max_angle = summary.worst_max_angle.max(a);
                     }
-                    if let Some(e) = mt.shortest_edge_over_d_min {
-                        summary.worst_edge_over_d_min = summary.worst_edge_over_d_min.min(e);
-                    }
-                    summary.max_delaunay_violations =
-                        summary.max_delaunay_violations.max(mt.delaunay_violations);
-                    if v.passed() {
-                        Ok(stats)
-                    } else {
-                        Err(format!("quality verdict failed:\n{v}"))
-                    }
-                })
-                .map(|stats| {
-                    summary.worst_min_angle = summary.worst_min_angle.min(stats.min_angle);
-                    summary.worst_max_angle = summary.worst_max_angle.max(stats.max_angle);
                     summary.max_triangles = summary.max_triangles.max(run.mesh.triangles.len());
-                }),
+                    Ok(())
+                } else {
+                    Err(format!("quality verdict failed:\n{v}"))
+                }
+            }
             Err(Error::Input {
                 problem:
                     InputError::Range { .. }
@@ -237,11 +271,13 @@ pub fn fuzz_campaign_sized(
         if let Err(message) = outcome {
             summary.failures += 1;
             summary.families[fam].failures += 1;
-            // Every failing input is written (up to a hundred files).
-            let path = if summary.failed.len() < 100 {
-                write_failure(mesher, seed, case, family, &input).ok()
-            } else {
-                None
+            // Every failing input is written when there is a directory for them (up to a
+            // hundred files).
+            let path = match out {
+                Some(dir) if summary.failed.len() < 100 => {
+                    write_failure(dir, mesher, seed, case, family, &input).ok()
+                }
+                _ => None,
             };
             summary.failed.push((case, family, path.clone()));
             if summary.first_failure.is_none() {
@@ -510,7 +546,8 @@ pub struct MeshStats {
     pub triangles: usize,
 }
 
-/// Checks a mesh against what every hexagonal mesher promises: triangles strictly
+/// A quick check the tests of the hexagonal meshers use (the campaign checks with
+/// `quality::verdict`): triangles strictly
 /// counter-clockwise (exact), every directed edge used once and every edge by at most two
 /// triangles, no duplicate vertices, input point i is vertex i bit for bit, and (when given)
 /// every angle within the bounds up to its rounding allowance (`quality::rounding`).
@@ -592,16 +629,17 @@ pub fn check_mesh(
     })
 }
 
-/// Writes the points of a failing case as a Triangle .node file under `fuzz-failures/`.
+/// Writes the points of a failing case as a Triangle .node file into `dir` (created if
+/// missing), named after the mesher, seed, case and family; returns its path.
 pub fn write_failure(
+    dir: &Path,
     mesher: &str,
     seed: u64,
     case: u64,
     family: &str,
     input: &Pslg,
 ) -> std::io::Result<PathBuf> {
-    let dir = PathBuf::from("fuzz-failures");
-    std::fs::create_dir_all(&dir)?;
+    std::fs::create_dir_all(dir)?;
     let path = dir.join(format!("{mesher}-seed{seed}-case{case}-{family}.node"));
     let mut s = format!("# fuzz case {case} of seed {seed} ({family}) that failed {mesher}\n");
     if let Some(h) = input.hexagon {
@@ -615,4 +653,24 @@ pub fn write_failure(
     }
     std::fs::write(&path, s)?;
     Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_failing_case_is_written_into_the_given_directory_and_reads_back() {
+        let dir = std::env::temp_dir()
+            .join(format!("hexmesh-fuzz-{}", std::process::id()))
+            .join("failures");
+        // A lattice case: its bounding hexagon is written as a directive too.
+        let input = generate_family_case(7, 6, "lattice");
+        let path = write_failure(&dir, "hex", 7, 6, "lattice", &input).expect("written");
+        assert_eq!(path, dir.join("hex-seed7-case6-lattice.node"));
+        let back = crate::io::read_input(&path).expect("reads back");
+        assert_eq!(back.points, input.points);
+        assert_eq!(back.hexagon, input.hexagon);
+        std::fs::remove_dir_all(dir.parent().unwrap()).ok();
+    }
 }

@@ -1,5 +1,5 @@
-//! Process isolation for one meshing call (DESIGN.md "Bad input": a mesher that does not
-//! terminate, or C code that calls `exit()`/`abort()`, must not take the harness down).
+//! Process isolation for one meshing call (a mesher that does not terminate, or C code that
+//! calls `exit()`/`abort()`, must not take the harness down).
 //!
 //! The parent spawns `hexmesh __run-mesher`, writes the request to the child's stdin and
 //! reads the answer from its stdout, both in a compact little-endian binary format (raw f64

@@ -1,7 +1,7 @@
 //! The maximum-angle protocol of paper 000 Sec. 8 "Results" (Table 1: "we increase the angle
 //! by 0.25 degrees step by step until the program fails"): ask a mesher for a minimum angle
 //! of 20°, then 20° + step, ... until it fails, and report the last angle it met. A step fails on an error, a budget stop, a timeout, an invalid mesh, or a mesh whose
-//! measured smallest angle is below the request by more than 1e-6° (DESIGN.md "Checks").
+//! measured smallest angle is below the request by more than 1e-6° (`ANGLE_TOLERANCE`).
 //! Every step runs isolated (`isolate::run_isolated`), since a reference may hang or exit.
 
 use std::fmt;
@@ -20,7 +20,8 @@ use crate::quality::{metrics, validate, ValidateOptions};
 pub const DEFAULT_START: f64 = 20.0;
 /// The paper's step, in degrees.
 pub const DEFAULT_STEP: f64 = 0.25;
-/// Rounding allowance on a measured angle, in degrees (DESIGN.md "Checks").
+/// Rounding allowance on a measured angle, in degrees: a request met but for the last bits
+/// of the computed angle counts as met.
 pub const ANGLE_TOLERANCE: f64 = 1e-6;
 /// No triangle has all angles above 60°: the protocol stops before asking for that.
 pub const CEILING: f64 = 60.0;
@@ -95,7 +96,8 @@ pub fn max_angle(
     }
     input.validate_input()?;
     let registered = crate::registry::mesher(mesher)?;
-    // Only meshers that promise to keep segments are held to it (DESIGN.md "Checks").
+    // Only meshers that promise to keep segments are held to conformity: the others mesh
+    // the points and are checked for validity alone.
     let conforming = registered.supports_segments();
     let settings = |angle: f64| {
         format!(

@@ -1,4 +1,4 @@
-//! The CGAL meshers `cgal` and `cgal-conforming` keep their promises (DESIGN.md "Checks"):
+//! The CGAL meshers `cgal` and `cgal-conforming` keep their promises (`verify --bounds`):
 //! input points kept bit-exactly, counter-clockwise triangles covering exactly the domain, the
 //! requested smallest angle and area for `cgal`, the empty-circle property for
 //! `cgal-conforming`; C++ exceptions and budgets come back as Rust values.

@@ -195,6 +195,28 @@ fn fuzz_runs_a_small_campaign_and_summarises_it() {
 }
 
 #[test]
+fn fuzz_writes_failing_cases_only_into_out_and_only_when_asked() {
+    let help = text(&hexmesh(&["fuzz", "--help"]));
+    assert!(
+        help.contains("--out <DIR>") && help.contains("no files are written"),
+        "{help}"
+    );
+    // A campaign that passes writes nothing, not even the directory.
+    let dir = temp("fuzz-out");
+    let out = hexmesh(&[
+        "fuzz",
+        "--mesher",
+        "hex-simple",
+        "--cases",
+        "20",
+        "--out",
+        dir.to_str().expect("utf-8"),
+    ]);
+    assert!(out.status.success(), "{}", text(&out));
+    assert!(!dir.exists());
+}
+
+#[test]
 fn the_hexagon_picture_is_drawn_for_hex_simple_and_refused_for_others() {
     let prefix = temp("close-pair-hex-simple");
     let svg = temp("close-pair-hexagons.svg");

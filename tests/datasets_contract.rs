@@ -1,4 +1,4 @@
-//! Every dataset is what DESIGN.md "Datasets" and the paper's Sec. 8 say it is: valid input,
+//! Every dataset is what `hexmesh::datasets` and the paper's Sec. 8 say it is: valid input,
 //! the right counts, the right domain, points where they should be.
 
 use hexmesh::datasets::{self, LINE_END, SCALING, SMALL};

@@ -1,5 +1,5 @@
 //! The committed datasets are the same bytes on every machine: SHA-256 of each small
-//! dataset's f64 bits, compared with digests committed here (DESIGN.md "Datasets").
+//! dataset's f64 bits, compared with digests committed here (they are generated from fixed seeds).
 //! A changed digest means a changed dataset: regenerate `datasets/` and say why in the commit.
 //! All six digests were also reproduced by an independent Python implementation (pcg64 from
 //! its specification: 128-bit LCG, XSL-RR output; the letters with the same Taylor series).

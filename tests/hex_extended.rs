@@ -84,7 +84,7 @@ fn ten_points_and_a_hundred_uniform_points_meet_the_extended_bounds() {
     assert_extended_bounds(&Pslg::from_points(pts));
 }
 
-/// The point-set datasets of DESIGN.md against every Sec. 6 bound, with the triangle counts
+/// The point-set datasets of paper 000 Table 1 against every Sec. 6 bound, with the triangle counts
 /// and times of paper 000 Table 1 for comparison (close-pair 684, line-100 18,667, plane-100
 /// 12,748, plane-1k 127,729, plane-2k 268,138 triangles).
 #[test]

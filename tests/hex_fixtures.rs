@@ -1,4 +1,4 @@
-//! `hex-simple` on the committed datasets (DESIGN.md "Datasets") and on the regression
+//! `hex-simple` on the committed datasets (`datasets/`) and on the regression
 //! fixtures of tests/fixtures/hex, each named after what found it, read through `io`.
 
 use std::path::{Path, PathBuf};

@@ -1,4 +1,4 @@
-//! `hex-simple` on the paper's datasets (DESIGN.md "Datasets"): a valid mesh, every input point
+//! `hex-simple` on the paper's datasets (`hexmesh::datasets`): a valid mesh, every input point
 //! a vertex bit for bit, every angle in [30°, 120°] (paper 000 Sec. 4.3).
 
 use hexmesh::fuzz::check_mesh;

@@ -1,5 +1,5 @@
 //! Every malformed input in tests/fixtures/io/ (named after its defect) is refused with the
-//! right kind of error, the right file and the right line (DESIGN.md "Bad input").
+//! right kind of error, the right file and the right line, never a panic.
 
 use std::path::{Path, PathBuf};
 

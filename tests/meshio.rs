@@ -1,4 +1,4 @@
-//! Python users read our VTK and Gmsh files with meshio (DESIGN.md "Files and command line"):
+//! Python users read our VTK and Gmsh files (`hexmesh mesh --format vtk,msh`) with meshio:
 //! meshio must see our vertex and triangle counts, our exact coordinates and our triangles.
 //! The interpreter comes from HEXMESH_PYTHON (set by the Makefile), else the crate's `.venv`.
 

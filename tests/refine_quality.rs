@@ -1,8 +1,8 @@
 //! The refine meshers judged by the project's own checker (`quality::verdict` with the
-//! bounds DESIGN.md gives them) on every dataset of the paper: `saalfeld` (both variants)
-//! valid, conforming and Delaunay; `lsb` valid and conforming, every angle at least half the
-//! smallest angle of its initial triangle (the bound that survives adaptive refinement); and
-//! Theorem 3.4 itself, 2/3, on the family T(A, B, C) of every initial triangle.
+//! bounds `quality::Bounds::parse` gives them) on every dataset of the paper: `saalfeld` (both
+//! variants) valid, conforming and Delaunay; `lsb` valid and conforming, every angle at least
+//! half the smallest angle of its initial triangle (the bound that survives adaptive
+//! refinement); and Theorem 3.4 itself, 2/3, on the family T(A, B, C) of every initial triangle.
 
 use hexmesh::quality::{descent, LSB_ADAPTIVE_RATIO, LSB_FAMILY_RATIO};
 use hexmesh::quality::{verdict, Bounds};

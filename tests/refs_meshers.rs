@@ -187,7 +187,7 @@ fn bad_input_is_an_error_not_a_crash() {
 
 #[test]
 fn the_close_pair_and_collinear_points_mesh_at_30_degrees() {
-    // DESIGN.md "close-pair": the bounding hexagon is the given unit hexagon, not fitted.
+    // As the close-pair dataset: the bounding hexagon is the given unit hexagon, not fitted.
     let close_pair = Pslg {
         points: vec![[-0.01, 0.0], [0.01, 0.0]],
         hexagon: Some(hexmesh::Hexagon::new([0.0, 0.0], 1.0)),

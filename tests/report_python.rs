@@ -1,5 +1,5 @@
 //! `results.csv` loads with Python's csv module and with pandas, the tools our users read
-//! reports with (DESIGN.md "Files and command line").
+//! reports with.
 
 use std::path::PathBuf;
 use std::process::Command;

@@ -1,4 +1,5 @@
-//! The `hexmesh` command line (DESIGN.md "Files and command line"). Exit codes: 0 when all is
+//! The `hexmesh` command line (`hexmesh --help`; reads Triangle .node/.poly files, writes
+//! Triangle, VTK, Gmsh and SVG). Exit codes: 0 when all is
 //! well, 1 when `verify` finds a failed check or a mesher stops short, 2 on bad input or usage.
 
 use std::path::{Path, PathBuf};
@@ -91,6 +92,11 @@ struct FuzzArgs {
     /// Seed of the case generator: the same seed gives the same cases.
     #[arg(long, default_value_t = 20_261_123)]
     seed: u64,
+    /// Directory the input of each failing case is written into, as a Triangle .node file
+    /// (created if missing; at most a hundred files). Without it no files are written: the
+    /// failing cases are only reported, and `--seed` with the case number reproduces them.
+    #[arg(long, value_name = "DIR")]
+    out: Option<PathBuf>,
 }
 
 #[derive(Args)]
@@ -388,7 +394,7 @@ fn refuse_to_overwrite_input(args: &MeshArgs, formats: &[crate::io::Format]) -> 
 /// What `mesh` holds a finished mesh to: the mesher's own promises (`Bounds::parse` of its
 /// name) and, for a reference, the minimum angle it was asked for (its default one when
 /// none was). Returns the bounds' name and the first problem when the mesh fails them: no
-/// mesh is passed on as good without being checked (DESIGN.md "Bad input").
+/// mesh is passed on as good without being checked.
 fn failed_promise(
     mesher: &str,
     input: &Pslg,
@@ -501,12 +507,17 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         None
     };
     let step = (args.cases / 20).max(1);
-    let summary =
-        crate::fuzz::fuzz_campaign(&args.mesher, args.cases, args.seed, |done| match &bar {
+    let summary = crate::fuzz::fuzz_campaign(
+        &args.mesher,
+        args.cases,
+        args.seed,
+        args.out.as_deref(),
+        |done| match &bar {
             Some(bar) => bar.set_position(done),
             None if done % step == 0 => eprintln!("{done}/{} cases", args.cases),
             None => {}
-        });
+        },
+    );
     if let Some(bar) = bar {
         bar.finish_and_clear();
     }

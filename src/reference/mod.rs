@@ -1,4 +1,5 @@
-//! Reference meshers behind the `Mesher` trait (DESIGN.md "Data flow"): each meshes the
+//! Reference meshers behind the `Mesher` trait, like our own (input `Pslg`, output a
+//! `MeshRun` the harness checks with `quality`): each meshes the
 //! domain the paper's Sec. 8 comparison uses — the bounding hexagon's corners and edges plus
 //! the input points for a point set (`Pslg::reference_domain`), the segments' region minus the
 //! seeded holes for a PSLG — and is asked for the minimum angle of the run.

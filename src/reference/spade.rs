@@ -1,6 +1,6 @@
 //! The `spade` reference mesher: spade 2.15.1's constrained Delaunay triangulation and its
 //! Delaunay refinement (Ruppert 1995 / Chew 1993 style, `ConstrainedDelaunayTriangulation::
-//! refine`), run on the domain of the paper's Sec. 8 comparison (DESIGN.md "Datasets").
+//! refine`), run on the domain of the paper's Sec. 8 comparison (`Pslg::reference_domain`).
 //!
 //! Angle limit: spade refines a triangle when circumradius / shortest edge exceeds a limit
 //! and `AngleLimit::from_deg(θ)` sets that limit to 1/(2 sin θ). By the law of sines the
@@ -8,7 +8,7 @@
 //! the limit refines exactly the triangles with α < θ: `from_deg` needs no correction.
 //!
 //! Domain: spade's `exclude_outer_faces` peels layers of faces between segments, alternately
-//! outer and inner, while Triangle's and DESIGN.md's rule removes the outside plus the regions
+//! outer and inner, while Triangle's rule, which ours follows, removes the outside plus the regions
 //! around hole seeds. Spade's exclusion is used during refinement only when it excludes
 //! nothing this rule keeps (otherwise kept faces would go unrefined): it is tried when no
 //! face an even number of crossings deep is kept, and its `excluded_faces` are checked after

@@ -12,6 +12,7 @@
 //! - `pslg`: the PSLG examples meshed by every mesher that keeps segments (`pslg.csv`).
 //! - `run`: the cases, isolated and checked; `run_report` ties everything together.
 
+mod case;
 pub mod lsb;
 pub mod plot;
 pub mod progress;
@@ -30,8 +31,8 @@ use std::time::Duration;
 use crate::error::{Error, Result};
 use crate::mesher::Params;
 
+pub(crate) use case::first_problem;
 pub use row::{Row, COLUMNS, VOLATILE_COLUMNS};
-pub(crate) use run::first_problem;
 pub use run::run_report;
 pub use table1::MaxAngleRow;
 

@@ -1,5 +1,5 @@
-//! Progress of a long report (DESIGN.md "Files and command line": long runs show a progress
-//! bar on a terminal): an indicatif bar when stderr is a terminal, plain numbered lines
+//! Progress of a long report, which can run for an hour and should show how far it got: an
+//! indicatif bar when stderr is a terminal, plain numbered lines
 //! otherwise (CI logs, `make report > log`), so a slow case can be found in either.
 
 use std::io::{IsTerminal, Write};

@@ -1,7 +1,7 @@
 //! The PSLG examples (`datasets::pslg_examples`: holes, a 5° wedge, a slit, nested boundaries,
 //! short segments beside long ones) meshed by every mesher that keeps segments, ours beside
 //! cgal, triangle and spade (issue 8): `pslg.csv` and its README section. Each case is the
-//! same isolated, timed and checked case as a `results.csv` row (`run::run_case`); the row
+//! same isolated, timed and checked case as a `results.csv` row (`case::run_case`); the row
 //! adds what a domain needs: validity and conformity violations apart, the angles near the
 //! segments and away from them apart (paper 000 Sec. 7 promises the hexagon bounds only away
 //! from them), and the area the mesh covers beside the area of the domain.
@@ -12,8 +12,8 @@ use std::time::Duration;
 
 use serde::Serialize;
 
+use super::case::run_case;
 use super::row::one_line;
-use super::run::run_case;
 use super::table1::seconds;
 use crate::datasets::PslgExample;
 use crate::mesher::Mesher;

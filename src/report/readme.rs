@@ -90,11 +90,12 @@ pub fn render(
     let _ = writeln!(
         md,
         "Our meshers run with default parameters and are checked against the bounds they \
-         promise (DESIGN.md \"Checks\": `hex` 43.8979°–90°, radius ratio ≤ 1.20787, shortest \
-         edge ≥ 0.12729·d_min, Delaunay; `hex-simple` 30°–120°; `rhomb` 30°–90°; `saalfeld` \
-         conforming with zero exact Delaunay violations; `lsb` every angle at least half the \
-         smallest angle of the initial triangle it lies in, paper 003 Sec. 4). The \
-         reference meshers ({}) are asked for a {}° minimum angle and checked against it.\n",
+         promise (`hexmesh verify --bounds NAME`: `hex` 43.8979°–90°, radius ratio ≤ \
+         1.20787, shortest edge ≥ 0.12729·d_min, Delaunay; `hex-simple` 30°–120°; `rhomb` \
+         30°–90°; `saalfeld` conforming with zero exact Delaunay violations; `lsb` every \
+         angle at least half the smallest angle of the initial triangle it lies in, paper 003 \
+         Sec. 4). The reference meshers ({}) are asked for a {}° minimum angle and checked \
+         against it.\n",
         facts.references.join(", "),
         facts.reference_request
     );

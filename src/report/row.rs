@@ -1,7 +1,7 @@
 //! One row of `results.csv` per dataset × mesher, the schema the rest of the report is
 //! generated from (rebar's habit: a failure is a row with its `err`, never a missing row).
 //!
-//! Column names follow Verdict where DESIGN.md "Names that trap" warns: `radius_ratio_max` is
+//! Column names follow Verdict, not the paper, where the two differ: `radius_ratio_max` is
 //! R/(2r) (1 for equilateral; the paper's "aspect ratio" bound 1.20787 of Sec. 6 is this
 //! quantity), `edge_ratio_max` is longest/shortest edge of a triangle.
 
@@ -64,7 +64,8 @@ pub struct Row {
     /// Number of validity violations (0 = a valid mesh).
     pub valid: Option<u64>,
     /// The verdict passed: the mesh is valid and every bound its mesher promises holds
-    /// (DESIGN.md "Checks"; on a PSLG the shape bounds are checked away from the segments).
+    /// (`quality::Bounds::parse` of its name; on a PSLG the shape bounds are checked away from
+    /// the segments).
     pub bounds_ok: Option<bool>,
     /// The first thing the verdict found wrong: a validity violation, else a failed bound
     /// with its value and limit; empty when it passed.

@@ -1,39 +1,26 @@
 //! Running the cases: every mesher on every dataset, each meshing call in a child process of
 //! our binary (`isolate`), checked by `quality` against the bounds its mesher promises
-//! (DESIGN.md "Checks"), and the paper's max-angle protocol (Sec. 8) for the references.
+//! (`quality::Bounds::parse`), and the paper's max-angle protocol (Sec. 8) for the references.
 //! A failure becomes a row with its `err`; nothing here stops the report but a usage error
 //! or an unwritable output directory.
 
 use std::path::Path;
-use std::time::Duration;
 
+use super::case::run_case;
 use super::plot::{self, AngleSeries, ScalingSeries};
 use super::progress::Progress;
 use super::readme::{self, Artifacts, Picture, RunFacts};
 use super::row::{one_line, write_csv, Row, COLUMNS, NOT_RUN};
-use super::stats::Timing;
 use super::table1::{self, paper_row, MaxAngleRow, MAX_ANGLE_COLUMNS};
-use super::{case_params, clear_generated, ReportOptions, REFERENCES, REFERENCE_MIN_ANGLE};
+use super::{clear_generated, ReportOptions, REFERENCES, REFERENCE_MIN_ANGLE};
 use crate::error::{Error, Result};
 use crate::io::{write_svg, SvgOptions};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{MeshRun, Mesher};
-use crate::quality::{self, Bounds};
+use crate::mesher::Mesher;
 use crate::{datasets, isolate, maxangle, registry};
 
 /// The datasets drawn in the manner of the paper's Fig. 15 (its four rows).
 const PICTURED: &[&str] = &["close-pair", "line-100", "plane-100", "imr"];
-
-/// What one case leaves behind besides its row.
-pub(super) struct Outcome {
-    pub(super) row: Row,
-    histogram: Option<Vec<u64>>,
-    bounds: Vec<f64>,
-    mesh: Option<TriMesh>,
-    /// The verdict on the mesh, when there was one to judge (its violations by kind, the
-    /// near-segment and interior figures apart).
-    pub(super) verdict: Option<quality::Verdict>,
-}
 
 /// Runs the whole report and writes `opts.out` (see the module comment of `report`).
 pub fn run_report(opts: &ReportOptions) -> Result<()> {
@@ -313,171 +300,6 @@ fn resolve_meshers(names: &[String]) -> Result<Vec<Box<dyn Mesher>>> {
     Ok(out)
 }
 
-/// The bounds a mesher's output is checked against: its own promise, and for a reference the
-/// minimum angle it was asked for.
-fn bounds_for(mesher: &str) -> Result<Bounds> {
-    let b = Bounds::parse(mesher)?;
-    if REFERENCES.contains(&mesher) {
-        b.with_min_angle(REFERENCE_MIN_ANGLE)
-    } else {
-        Ok(b)
-    }
-}
-
-/// Meshes `input` with `mesher` `runs` times, each in a child of `exe` killed after
-/// `timeout`, and checks the first mesh against the mesher's bounds (`bounds_for`).
-pub(super) fn run_case(
-    exe: &Path,
-    mesher: &dyn Mesher,
-    dataset: &str,
-    input: &Pslg,
-    runs: usize,
-    timeout: Duration,
-) -> Outcome {
-    let name = mesher.name();
-    let mut row = Row::empty(dataset, input.points.len(), name, &mesher.version());
-    let (params, asked) = case_params(name);
-    row.params = asked;
-    row.settings = one_line(&mesher.settings(&params));
-    let mut outcome = Outcome {
-        row,
-        histogram: None,
-        bounds: Vec::new(),
-        mesh: None,
-        verdict: None,
-    };
-    if input.has_segments() && !mesher.supports_segments() {
-        outcome.row.err = NOT_RUN.into();
-        return outcome;
-    }
-
-    let mut times: Vec<Duration> = Vec::new();
-    let mut peak: Option<u64> = None;
-    let mut first: Option<MeshRun> = None;
-    let mut errors: Vec<String> = Vec::new();
-    for _ in 0..runs {
-        match isolate::run_isolated(exe, name, input, &params, timeout) {
-            Err(e) => {
-                errors.push(e.to_string());
-                break;
-            }
-            Ok(iso) => {
-                peak = Some(peak.unwrap_or(0).max(iso.peak_rss_bytes));
-                let run = iso.run;
-                if !run.complete {
-                    errors.push(format!(
-                        "stopped early: {}",
-                        run.stop_reason.as_deref().unwrap_or("no reason given")
-                    ));
-                    if first.is_none() {
-                        first = Some(run);
-                    }
-                    break;
-                }
-                times.push(run.elapsed);
-                match &first {
-                    None => first = Some(run),
-                    Some(f) if f.mesh != run.mesh => {
-                        errors.push("the mesh differs from the first run's".into());
-                    }
-                    Some(_) => {}
-                }
-            }
-        }
-    }
-    let row = &mut outcome.row;
-    row.complete = errors.is_empty() && first.as_ref().is_some_and(|r| r.complete);
-    row.err = one_line(&errors.join("; "));
-    row.runs = times.len() as u64;
-    if let Some(t) = Timing::of(&times) {
-        row.time_median_s = Some(t.median);
-        row.time_min_s = Some(t.min);
-        row.time_max_s = Some(t.max);
-    }
-    row.peak_rss_mb = peak.map(|b| b as f64 / (1024.0 * 1024.0));
-
-    let Some(run) = first else {
-        return outcome;
-    };
-    if run.mesh.triangles.is_empty() {
-        // A mesher that finishes without a triangle has failed, even if it says complete.
-        if row.err.is_empty() {
-            row.err = "the mesh has no triangles".into();
-        }
-        return outcome;
-    }
-    let bounds = match bounds_for(name) {
-        Ok(b) => Some(b),
-        Err(e) => {
-            let note = format!("no bounds to check: {e}");
-            row.err = if row.err.is_empty() {
-                note
-            } else {
-                format!("{}; {note}", row.err)
-            };
-            None
-        }
-    };
-    let verdict = quality::verdict(&run.mesh, Some(input), bounds.as_ref());
-    let m = &verdict.metrics;
-    row.vertices = Some(m.vertices as u64);
-    row.steiner_points = Some(m.vertices.saturating_sub(row.points as usize) as u64);
-    row.triangles = Some(m.triangles as u64);
-    row.covered_area = Some(m.covered_area);
-    row.min_angle = m.min_angle.as_ref().map(|w| w.value);
-    row.max_angle = m.max_angle.as_ref().map(|w| w.value);
-    row.radius_ratio_max = m.radius_ratio_max.as_ref().map(|w| w.value);
-    row.edge_ratio_max = m.edge_ratio_max.as_ref().map(|w| w.value);
-    row.shortest_edge = m.shortest_edge.as_ref().map(|w| w.value);
-    row.d_min = m.d_min;
-    row.shortest_over_dmin = m.shortest_edge_over_d_min;
-    row.delaunay_exact_violations = Some(m.delaunay_violations as u64);
-    row.delaunay_tol_violations = Some(m.delaunay_tolerance_violations as u64);
-    if let Some(split) = &verdict.split {
-        row.interior_min_angle = split.interior.min_angle.as_ref().map(|w| w.value);
-        row.interior_max_angle = split.interior.max_angle.as_ref().map(|w| w.value);
-    }
-    row.valid = Some(verdict.violations.len() as u64);
-    row.problem = first_problem(&verdict);
-    if let Some(b) = &bounds {
-        row.bounds_ok = Some(verdict.passed());
-        outcome.bounds = b.min_angle.into_iter().chain(b.max_angle).collect();
-    }
-    outcome.histogram = Some(verdict.metrics.angle_histogram.clone());
-    outcome.mesh = Some(run.mesh);
-    outcome.verdict = Some(verdict);
-    outcome
-}
-
-/// The first validity violation, else the first failed check, in one line.
-pub(crate) fn first_problem(v: &quality::Verdict) -> String {
-    if let Some(first) = v.violations.first() {
-        let more = v.violations.len() - 1;
-        let tail = if more > 0 {
-            format!(" (and {more} more)")
-        } else {
-            String::new()
-        };
-        return one_line(&format!("{first}{tail}"));
-    }
-    v.checks
-        .iter()
-        .find(|c| c.status == quality::Status::Fail)
-        .map_or_else(String::new, |c| {
-            let value = c
-                .value
-                .map_or_else(|| "none".to_string(), |x| format!("{x}"));
-            let note = c
-                .note
-                .as_ref()
-                .map_or_else(String::new, |n| format!(" ({n})"));
-            one_line(&format!(
-                "{} = {value}, must be {} {}{note}",
-                c.what, c.relation, c.limit
-            ))
-        })
-}
-
 fn summary(r: &Row) -> String {
     let mut s = format!("{} × {}: ", r.dataset, r.mesher);
     match (r.triangles, r.min_angle, r.max_angle) {
@@ -733,24 +555,5 @@ mod tests {
         assert_eq!(dataset_names(&opts), ["imr"]);
         opts.datasets = vec!["plane-100".into()];
         assert!(example_names(&opts).is_empty());
-    }
-
-    #[test]
-    fn first_problem_names_a_failed_bound_with_its_limit() {
-        // A 30°-60°-90° triangle breaks hex's 43.9° bound; a 45°-45°-90° one keeps it.
-        let mesh = TriMesh {
-            vertices: vec![[0.0, 0.0], [3f64.sqrt(), 0.0], [0.0, 1.0]],
-            triangles: vec![[0, 1, 2]],
-        };
-        let b = Bounds::parse("hex").unwrap();
-        let v = quality::verdict(&mesh, None, Some(&b));
-        let p = first_problem(&v);
-        assert!(p.starts_with("min angle (deg) = 30"), "{p}");
-        assert!(p.contains("must be ≥ 43.89"), "{p}");
-        let ok = TriMesh {
-            vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
-            triangles: vec![[0, 1, 2]],
-        };
-        assert_eq!(first_problem(&quality::verdict(&ok, None, Some(&b))), "");
     }
 }

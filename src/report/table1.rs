@@ -25,7 +25,7 @@ pub struct PaperCell {
     pub text: &'static str,
 }
 
-/// One row of the paper's Table 1 and the dataset (DESIGN.md "Datasets") that reproduces it.
+/// One row of the paper's Table 1 and the dataset of `datasets` that reproduces it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PaperRow {
     pub dataset: &'static str,
@@ -214,7 +214,8 @@ pub fn render(
     md.push_str(
         "\n## Covered area\n\nThe hexagon mesher's dual mesh does not reach the bounding \
          hexagon's corners, so it covers less area than meshers that mesh the whole hexagon \
-         (DESIGN.md \"Datasets\"); triangle counts are only comparable next to this.\n\n",
+         (the references mesh the bounding hexagon with the points inside it); triangle \
+         counts are only comparable next to this.\n\n",
     );
     md.push_str("| data set |");
     for m in meshers {

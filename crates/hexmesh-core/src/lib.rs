@@ -16,7 +16,7 @@
 //!
 //! # Meshing points
 //!
-//! [`mesh`] meshes a point set with `hex`. Points may be `[f64; 2]`, `glam::DVec2` or anything
+//! [`mesh()`] meshes a point set with `hex`. Points may be `[f64; 2]`, `glam::DVec2` or anything
 //! else that converts into `[f64; 2]`:
 //!
 //! ```
@@ -55,8 +55,8 @@
 //! # Ok::<(), hexmesh_core::Error>(())
 //! ```
 //!
-//! Every mesher is also reachable by name ([`mesher`]) behind the [`Mesher`] trait; the
-//! [`Bounds`] its meshes are checked against come from [`quality::verdict`]'s bounds.
+//! Every mesher is also reachable by name ([`mesher()`]) behind the [`Mesher`] trait; the
+//! [`Bounds`] its meshes are checked against go to [`quality::verdict()`].
 //!
 //! # Files
 //!
@@ -64,11 +64,12 @@
 //!
 //! # Layers
 //!
-//! [`geom`] (exact predicates, the lattice arithmetic) → [`mesh`] (input and output types) →
+//! [`geom`] (exact predicates, the lattice arithmetic) → [`mod@mesh`] (input and output types) →
 //! [`quality`] (metrics, validation, the rounding allowance, verdicts) → the meshers
 //! ([`hex`], [`rhomb`], [`refine`]) → [`registry`] and the functions above.
 
 #![forbid(unsafe_code)]
+#![warn(missing_docs)]
 
 pub mod error;
 pub mod geom;

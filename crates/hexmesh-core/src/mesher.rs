@@ -6,6 +6,10 @@ use std::time::Duration;
 use crate::error::Result;
 use crate::mesh::{Pslg, TriMesh};
 
+/// The largest rounding allowance, in degrees, that a mesh of ours may use before its input is
+/// refused (`Params::max_rounding`; `quality::rounding` explains the allowance).
+pub const DEFAULT_MAX_ROUNDING_DEG: f64 = 0.01;
+
 /// Limits that bound every refinement loop. `None` means no limit of that kind.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Budget {
@@ -28,20 +32,24 @@ pub struct Params {
     /// The largest rounding allowance (degrees) a mesh of ours may use before the input is
     /// refused (`quality::rounding`); `None`: `DEFAULT_MAX_ROUNDING_DEG`.
     pub max_rounding: Option<f64>,
+    /// The limits every refinement loop stops at (none by default).
     pub budget: Budget,
 }
 
 impl Params {
+    /// These parameters asking for a minimum angle of `degrees` (the references' request).
     pub fn with_min_angle(mut self, degrees: f64) -> Params {
         self.min_angle = Some(degrees);
         self
     }
 
+    /// These parameters asking for triangles of at most `area`.
     pub fn with_max_area(mut self, area: f64) -> Params {
         self.max_area = Some(area);
         self
     }
 
+    /// These parameters allowing meshes to use at most `degrees` of rounding allowance.
     pub fn with_max_rounding(mut self, degrees: f64) -> Params {
         self.max_rounding = Some(degrees);
         self
@@ -49,10 +57,10 @@ impl Params {
 
     /// The largest rounding allowance a mesh may use, in degrees.
     pub fn max_rounding_deg(&self) -> f64 {
-        self.max_rounding
-            .unwrap_or(crate::quality::rounding::DEFAULT_MAX_ROUNDING_DEG)
+        self.max_rounding.unwrap_or(DEFAULT_MAX_ROUNDING_DEG)
     }
 
+    /// These parameters with the limits `budget`.
     pub fn with_budget(mut self, budget: Budget) -> Params {
         self.budget = budget;
         self
@@ -63,7 +71,9 @@ impl Params {
 /// mesh so far is returned with `complete == false` and the reason.
 #[derive(Debug, Clone, PartialEq)]
 pub struct MeshRun {
+    /// The mesh: the input points are its first vertices, in order.
     pub mesh: TriMesh,
+    /// False when a budget stopped the mesher before it finished.
     pub complete: bool,
     /// Why the mesher stopped early, when it did.
     pub stop_reason: Option<String>,
@@ -75,7 +85,7 @@ pub struct MeshRun {
 
 /// A 2D mesher.
 pub trait Mesher: Send + Sync {
-    /// The name used on the command line and in reports (DESIGN.md "Data flow").
+    /// The name used on the command line, in reports and by `registry::mesher`.
     fn name(&self) -> &'static str;
 
     /// The version of the implementation (a crate version, a library version).

@@ -2,7 +2,7 @@
 //! square blocks of cells, one cache line a block. A container of ours, not in paper 000.
 
 use crate::hex::fxhash::FxHashMap;
-use crate::hex::lattice::Key;
+use crate::hex::key::Key;
 
 /// One cache line of slots of a `KeyLines` map: the values of a square block of cells of
 /// one level, `EMPTY` in the slots of cells that have none.

@@ -2,7 +2,7 @@
 //! point) kept as 8 × 8 blocks of bits. A container of ours, not in the paper.
 
 use crate::hex::fxhash::FxHashMap;
-use crate::hex::lattice::{Key, DIRS};
+use crate::hex::key::{Key, DIRS};
 
 /// The bits of `next` seen one row of cells along i from `word` (`step` = 1: cell (i, j) gets
 /// the bit of (i + 1, j); -1: of (i - 1, j)), where `next` is the block beyond, in the

@@ -4,7 +4,8 @@
 //!
 //! `hex-simple` is the simple refinement: every angle in [30°, 120°] (Sec. 4.3).
 //!
-//! - `lattice`: integer keys of hexagons, exact positions, the bounding-hexagon test.
+//! - `key`: integer keys of hexagons, their children, parents and neighbours (Sec. 3.1).
+//! - `lattice`: exact positions of the keys, the bounding-hexagon test.
 //! - `keyset`, `keylines`, `fxhash`: containers of lattice keys (ours, not the paper's).
 //! - `parallel`: long lists split over the machine's threads (ours, not the paper's).
 //! - `subdivision`: split, join, balancing, point location (Sec. 3).
@@ -20,6 +21,7 @@ pub mod dual;
 pub mod extended;
 pub mod fxhash;
 pub mod incremental;
+pub mod key;
 pub mod keylines;
 pub mod keyset;
 pub mod lattice;

@@ -326,6 +326,29 @@ pub fn metrics_split(mesh: &TriMesh, input: &Pslg, band: f64) -> SplitMetrics {
     }
 }
 
+/// The distance within which a vertex counts as lying on an input segment: the conformity
+/// check's 2^-40 of the segments' coordinate scale (`validate`). A mesher that splits a
+/// segment at a constructed point can only round it onto the line; the triangles at such a
+/// point touch the segment, and count as near-segment triangles, not as interior ones.
+pub(crate) fn on_segment_tolerance(input: &Pslg) -> f64 {
+    let scale = input
+        .segments
+        .iter()
+        .filter_map(|s| {
+            Some((
+                input.points.get(s[0] as usize)?,
+                input.points.get(s[1] as usize)?,
+            ))
+        })
+        .map(|(a, b)| {
+            [a[0], a[1], b[0], b[1]]
+                .iter()
+                .fold(crate::geom::dist(*a, *b), |m, c| m.max(c.abs()))
+        })
+        .fold(0.0, f64::max);
+    scale * (-40f64).exp2()
+}
+
 /// The triangles near a segment, found through a uniform grid of triangle bounding boxes so
 /// that each segment tests only the triangles around it.
 pub(crate) fn near_segment_triangles(mesh: &TriMesh, input: &Pslg, band: f64) -> Vec<usize> {

@@ -36,8 +36,8 @@ pub const ROUNDING_UNIT: f64 = 1.0 / (1u64 << 50) as f64;
 pub const ANGLE_FLOOR_DEG: f64 = 1e-6;
 
 /// The largest allowance a mesh of ours may use before the input is refused, in degrees
-/// (`--max-rounding`).
-pub const DEFAULT_MAX_ROUNDING_DEG: f64 = 0.01;
+/// (`--max-rounding`); defined beside `Params`, which falls back to it.
+pub use crate::mesher::DEFAULT_MAX_ROUNDING_DEG;
 
 /// δv: how far rounding may have moved vertex `p` from its place in real arithmetic.
 pub fn delta(p: Point) -> f64 {
@@ -312,7 +312,7 @@ pub fn check_interior_angles(
     max_rounding: f64,
     mesher: &str,
 ) -> crate::error::Result<()> {
-    let band = crate::quality::verdict::on_segment_tolerance(input);
+    let band = crate::quality::metrics::on_segment_tolerance(input);
     let near = crate::quality::metrics::near_segment_triangles(mesh, input, band);
     let mut is_near = vec![false; mesh.triangles.len()];
     for t in near {

@@ -12,29 +12,6 @@ use crate::quality::metrics::{metrics, metrics_split, triangle_shape, Metrics, S
 use crate::quality::rounding::{self, angle_fit, fit_of, Fit, Use, ANGLE_FLOOR_DEG};
 use crate::quality::validate::{validate, ValidateOptions, Violation};
 
-/// The distance within which a vertex counts as lying on an input segment: the conformity
-/// check's 2^-40 of the segments' coordinate scale (`validate`). A mesher that splits a
-/// segment at a constructed point can only round it onto the line; the triangles at such a
-/// point touch the segment, and count as near-segment triangles, not as interior ones.
-pub(crate) fn on_segment_tolerance(input: &Pslg) -> f64 {
-    let scale = input
-        .segments
-        .iter()
-        .filter_map(|s| {
-            Some((
-                input.points.get(s[0] as usize)?,
-                input.points.get(s[1] as usize)?,
-            ))
-        })
-        .map(|(a, b)| {
-            [a[0], a[1], b[0], b[1]]
-                .iter()
-                .fold(crate::geom::dist(*a, *b), |m, c| m.max(c.abs()))
-        })
-        .fold(0.0, f64::max);
-    scale * (-40f64).exp2()
-}
-
 /// The outcome of one check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize))]
@@ -133,7 +110,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
     let all = metrics(mesh, input);
     let split = input
         .filter(|i| i.has_segments())
-        .map(|i| metrics_split(mesh, i, on_segment_tolerance(i)));
+        .map(|i| metrics_split(mesh, i, crate::quality::metrics::on_segment_tolerance(i)));
 
     let mut checks = vec![Check {
         what: "validity violations".to_string(),

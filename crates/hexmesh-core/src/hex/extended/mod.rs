@@ -93,11 +93,11 @@
 //! - `splice`: the whole dual spliced after local repairs (not in the paper);
 //! - `repair`: the loop of rules, checks and repairs (`extend_and_verify`).
 
-mod check;
-mod relocate;
+pub(crate) mod check;
+pub(crate) mod relocate;
 mod repair;
 mod rings;
-mod rules;
+pub(crate) mod rules;
 mod settle;
 mod splice;
 mod undo;
@@ -112,13 +112,12 @@ use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
 
-pub(crate) use check::breaks_bounds;
 pub use check::{delaunay_violations, settle_rounding};
 pub use relocate::{relocations, relocations_of};
 pub(crate) use repair::extend_and_verify;
 pub use rings::RingState;
 use rings::{apply_placed, rings_with_flips};
-pub(crate) use rules::{around, extended_actions};
+pub(crate) use rules::around;
 
 /// The smallest angle of the extended refinement, atan(5/(3√3)), in degrees.
 pub fn min_angle_bound() -> f64 {

@@ -14,7 +14,9 @@ use crate::error::Error;
 use crate::geom::{incircle, Point};
 use crate::hex::classify::rings;
 use crate::hex::dual::{self, Placement};
-use crate::hex::extended::{around, relocations};
+use crate::hex::extended::check::breaks_bounds;
+use crate::hex::extended::relocate::relocations;
+use crate::hex::extended::rules::around;
 use crate::hex::lattice::{Key, KeySet};
 use crate::hex::refine::refine_simple;
 use crate::hex::subdivision::{Hierarchy, Stop};
@@ -131,13 +133,6 @@ pub(super) fn drive(
     }
 }
 
-/// True when the triangle abc breaks the Sec. 6 angle bounds by more than the extended
-/// refinement's self-check allows (its slack and the rounding of the corners,
-/// `extended::breaks_bounds`).
-pub(super) fn breaks_angle_bounds(c: [Point; 3]) -> bool {
-    crate::hex::extended::breaks_bounds(&c)
-}
-
 /// Triangles with no corner on a segment that break the Sec. 6 angle bounds, or sit on an edge
 /// of two such triangles that fails the exact empty-circle test.
 fn interior_offenders(b: &Built) -> Vec<usize> {
@@ -149,7 +144,7 @@ fn interior_offenders(b: &Built) -> Vec<usize> {
         .collect();
     let mut bad: Vec<usize> = Vec::new();
     for (t, _) in interior.iter().enumerate().filter(|(_, &i)| i) {
-        if breaks_angle_bounds(mesh.corners(t)) {
+        if breaks_bounds(&mesh.corners(t)) {
             bad.push(t);
         }
     }

@@ -4,8 +4,8 @@
 //! subdividing it only moves the notch (on imr three rounds went from 46k to 660k triangles).
 //! It is flipped instead with its neighbour that has a corner on the segment.
 
-use super::drive::breaks_angle_bounds;
 use crate::geom::{orient2d, Point};
+use crate::hex::extended::check::breaks_bounds;
 use crate::hex::lattice::FxHashMap;
 
 /// A cavity triangle with no corner on a segment counts as interior and must keep the Sec. 6
@@ -29,7 +29,7 @@ pub(super) fn flip_interior_cavity_triangles(
     let mut flips = 0;
     for t in 0..tris.len() {
         let tri = tris[t];
-        if tri.iter().any(|&v| on_segment[v as usize]) || !breaks_angle_bounds(corners(tri)) {
+        if tri.iter().any(|&v| on_segment[v as usize]) || !breaks_bounds(&corners(tri)) {
             continue;
         }
         for e in 0..3 {

@@ -13,7 +13,7 @@ use std::collections::BTreeMap;
 use super::{crossed_cells, PslgStats};
 use crate::geom::Point;
 use crate::hex::classify::{fin_mask, rings};
-use crate::hex::extended::{around, extended_actions};
+use crate::hex::extended::rules::{around, extended_actions};
 use crate::hex::lattice::{Key, KeySet};
 use crate::hex::refine::{drain, is_fin};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};

@@ -1,7 +1,7 @@
 //! Meshers by name: the list the CLI and the harness loop over. A mesher that does not work
 //! yet is not listed.
 
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::mesher::Mesher;
 
 /// Every registered mesher, in report order: the library's (`hexmesh_core::meshers`) with
@@ -38,23 +38,13 @@ pub fn mesher_names() -> Vec<&'static str> {
 
 /// The mesher or variant called `name`.
 pub fn mesher(name: &str) -> Result<Box<dyn Mesher>> {
-    meshers()
-        .into_iter()
-        .chain(variants())
-        .find(|m| m.name() == name)
-        .ok_or_else(|| Error::UnknownMesher {
-            name: name.to_string(),
-            known: mesher_names()
-                .into_iter()
-                .chain(variants().iter().map(|m| m.name()))
-                .map(|s| s.to_string())
-                .collect(),
-        })
+    hexmesh_core::registry::find(name, meshers().into_iter().chain(variants()).collect())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::error::Error;
 
     #[test]
     fn variants_resolve_by_name_but_are_not_in_the_default_list() {

@@ -30,17 +30,19 @@ pub fn variants() -> Vec<Box<dyn Mesher>> {
 
 /// The library's mesher or variant called `name`.
 pub fn mesher(name: &str) -> Result<Box<dyn Mesher>> {
-    meshers()
+    find(name, meshers().into_iter().chain(variants()).collect())
+}
+
+/// The mesher called `name` among `candidates`; otherwise an `UnknownMesher` error listing
+/// their names in order. The harness looks up its own list, references included, with it.
+pub fn find(name: &str, candidates: Vec<Box<dyn Mesher>>) -> Result<Box<dyn Mesher>> {
+    let known = candidates.iter().map(|m| m.name().to_string()).collect();
+    candidates
         .into_iter()
-        .chain(variants())
         .find(|m| m.name() == name)
         .ok_or_else(|| Error::UnknownMesher {
             name: name.to_string(),
-            known: meshers()
-                .iter()
-                .chain(variants().iter())
-                .map(|m| m.name().to_string())
-                .collect(),
+            known,
         })
 }
 

@@ -264,6 +264,26 @@ const SKIP_SLACK_DEG: f64 = 1e-7;
 pub fn check_angles(
     mesh: &crate::mesh::TriMesh,
     points: &[Point],
+    bounds: (f64, f64),
+    max_rounding: f64,
+    mesher: &str,
+) -> crate::error::Result<()> {
+    check_triangle_angles(
+        mesh,
+        0..mesh.triangles.len(),
+        points,
+        bounds,
+        max_rounding,
+        mesher,
+    )
+}
+
+/// `check_angles` on the triangles `triangles` of `mesh` only (indices into the whole mesh,
+/// which the messages use).
+fn check_triangle_angles(
+    mesh: &crate::mesh::TriMesh,
+    triangles: impl Iterator<Item = usize>,
+    points: &[Point],
     (lo, hi): (f64, f64),
     max_rounding: f64,
     mesher: &str,
@@ -273,7 +293,7 @@ pub fn check_angles(
     // most are, so only the rest are measured.
     let window = (lo < 90.0 && hi >= 90.0 && max_rounding >= SKIP_SLACK_DEG)
         .then(|| AngleWindow::new(lo, hi, SKIP_SLACK_DEG));
-    let tris = (0..mesh.triangles.len())
+    let tris = triangles
         .map(|t| (t, mesh.corners(t)))
         .filter(|(_, c)| !window.is_some_and(|w| w.clearly_within(c)));
     let Some(fit) = angle_fit(tris, lo, hi) else {
@@ -318,14 +338,8 @@ pub fn check_interior_angles(
     for t in near {
         is_near[t] = true;
     }
-    let interior = crate::mesh::TriMesh {
-        vertices: mesh.vertices.clone(),
-        triangles: (0..mesh.triangles.len())
-            .filter(|&t| !is_near[t])
-            .map(|t| mesh.triangles[t])
-            .collect(),
-    };
-    check_angles(&interior, &input.points, bounds, max_rounding, mesher)
+    let interior = (0..mesh.triangles.len()).filter(|&t| !is_near[t]);
+    check_triangle_angles(mesh, interior, &input.points, bounds, max_rounding, mesher)
 }
 
 #[cfg(test)]

@@ -72,7 +72,11 @@ pub struct LsbRun {
 
 /// The smallest angle of triangle `t`, in radians.
 pub fn min_angle(mesh: &TriMesh, t: usize) -> f64 {
-    let c = mesh.corners(t);
+    smallest_angle(mesh.corners(t))
+}
+
+/// The smallest angle of the triangle with corners `c`, in radians.
+fn smallest_angle(c: [Point; 3]) -> f64 {
     (0..3)
         .map(|k| crate::geom::angle_deg(c[k], c[(k + 1) % 3], c[(k + 2) % 3]).to_radians())
         .fold(f64::INFINITY, f64::min)
@@ -600,14 +604,7 @@ pub fn family(initial: &TriMesh, levels: u32, plain: bool) -> (TriMesh, Vec<u32>
     let mut soup = TriMesh::default();
     let mut parents = Vec::new();
     for t in 0..initial.triangles.len() {
-        let mut gen = vec![initial.corners(t)];
-        for _ in 0..levels {
-            gen = gen
-                .into_iter()
-                .flat_map(|x| split_alone(x, plain))
-                .collect();
-        }
-        for tri in gen {
+        for tri in family_of(initial.corners(t), levels, plain) {
             let base = soup.vertices.len() as u32;
             soup.vertices.extend(tri);
             soup.triangles.push([base, base + 1, base + 2]);
@@ -617,29 +614,30 @@ pub fn family(initial: &TriMesh, levels: u32, plain: bool) -> (TriMesh, Vec<u32>
     (soup, parents)
 }
 
+/// The family T(A, B, C) of triangle `root`, `levels` splits deep: every triangle each split
+/// of `split_alone` makes, level by level.
+fn family_of(root: [Point; 3], levels: u32, plain: bool) -> Vec<[Point; 3]> {
+    let mut gen = vec![root];
+    for _ in 0..levels {
+        gen = gen
+            .into_iter()
+            .flat_map(|x| split_alone(x, plain))
+            .collect();
+    }
+    gen
+}
+
 /// Theorem 3.4's quantity over the family T(A, B, C) of every triangle of `initial`, `levels`
 /// deep, without building the soup: the smallest ratio of a descendant's smallest angle to its
 /// ancestor's. Memory is one triangle's family (at most 4^levels triangles), so it runs on a
 /// million-triangle triangulation too. Infinity when `initial` has no triangles.
 pub fn family_min_ratio(initial: &TriMesh, levels: u32, plain: bool) -> f64 {
-    let smallest = |c: [Point; 3]| {
-        (0..3)
-            .map(|k| crate::geom::angle_deg(c[k], c[(k + 1) % 3], c[(k + 2) % 3]).to_radians())
-            .fold(f64::INFINITY, f64::min)
-    };
     let mut ratio = f64::INFINITY;
     for t in 0..initial.triangles.len() {
         let root = initial.corners(t);
-        let base = smallest(root);
-        let mut gen = vec![root];
-        for _ in 0..levels {
-            gen = gen
-                .into_iter()
-                .flat_map(|x| split_alone(x, plain))
-                .collect();
-        }
-        for tri in gen {
-            ratio = ratio.min(smallest(tri) / base);
+        let base = smallest_angle(root);
+        for tri in family_of(root, levels, plain) {
+            ratio = ratio.min(smallest_angle(tri) / base);
         }
     }
     ratio

@@ -130,9 +130,9 @@ class Budget {
 public:
   Budget(const Limits &limits, Clock::time_point start) : limits_(limits), start_(start) {}
 
-  // False while refinement may go on; otherwise true, with the reason in `why`. Called once
-  // per step, so the message is formatted only when a limit is hit.
-  bool exhausted(std::uint64_t steps, std::size_t vertices, std::string &why) const {
+  // False while refinement may go on; otherwise true, with the budget that ran out in
+  // `stopped_by` (the codes of `CgalMesh::stopped_by`). Called once per step.
+  bool exhausted(std::uint64_t steps, std::size_t vertices, std::uint8_t &stopped_by) const {
     const bool by_steps = steps >= limits_.max_steps;
     const bool by_vertices = !by_steps && vertices >= limits_.max_vertices;
     const bool by_time = !by_steps && !by_vertices &&
@@ -140,17 +140,7 @@ public:
                          std::chrono::duration<double>(Clock::now() - start_).count() >=
                              limits_.max_seconds;
     if (!by_steps && !by_vertices && !by_time) return false;
-    std::ostringstream msg;
-    if (by_steps) {
-      msg << "step budget of " << limits_.max_steps << " refinement steps reached";
-    } else if (by_vertices) {
-      msg << "vertex budget of " << limits_.max_vertices << " vertices reached after " << steps
-          << " steps";
-    } else {
-      msg << "time budget of " << limits_.max_seconds << " s ran out after " << steps
-          << " steps";
-    }
-    why = msg.str();
+    stopped_by = by_steps ? 1 : by_vertices ? 2 : 3;
     return true;
   }
 
@@ -164,7 +154,7 @@ private:
 // faces use, in face order. Faces of a CDT are counter-clockwise.
 template <typename InDomain>
 CgalMesh extract(const CDT &cdt, const std::vector<Vertex_handle> &inputs, InDomain in_domain,
-                 std::uint64_t steps, const std::string &stop_reason) {
+                 std::uint64_t steps, std::uint8_t stopped_by) {
   CgalMesh out;
   std::unordered_map<const void *, std::uint32_t> id;
   auto add_vertex = [&](Vertex_handle v) {
@@ -186,8 +176,7 @@ CgalMesh extract(const CDT &cdt, const std::vector<Vertex_handle> &inputs, InDom
     throw std::length_error("more than 2^32 vertices");
   }
   out.steps = steps;
-  out.complete = stop_reason.empty();
-  out.stop_reason = stop_reason;
+  out.stopped_by = stopped_by;
   return out;
 }
 
@@ -268,7 +257,7 @@ CgalMesh mesh_delaunay(rust::Slice<const double> points, rust::Slice<const std::
   CDT cdt;
   const std::vector<Vertex_handle> handles = build_domain(cdt, input, segments);
   if (cdt.dimension() < 2) {
-    return extract(cdt, handles, [](Face_handle) { return false; }, 0, "");
+    return extract(cdt, handles, [](Face_handle) { return false; }, 0, 0);
   }
 
   Mesher mesher(cdt, Criteria(shape_bound, size_bound));
@@ -276,7 +265,7 @@ CgalMesh mesh_delaunay(rust::Slice<const double> points, rust::Slice<const std::
   mesher.init();
   const Budget budget(limits, start);
   std::uint64_t steps = 0;
-  std::string stop;
+  std::uint8_t stop = 0;
   while (!mesher.is_refinement_done()) {
     if (budget.exhausted(steps, cdt.number_of_vertices(), stop)) break;
     // Each successful call inserts one Steiner point (an edge midpoint or a circumcentre).
@@ -295,7 +284,7 @@ CgalMesh mesh_conforming(rust::Slice<const double> points,
   CDT cdt;
   const std::vector<Vertex_handle> handles = build_domain(cdt, input, segments);
   if (cdt.dimension() < 2) {
-    return extract(cdt, handles, [](Face_handle) { return false; }, 0, "");
+    return extract(cdt, handles, [](Face_handle) { return false; }, 0, 0);
   }
 
   // make_conforming_Delaunay_2(cdt) is Conformer::make_conforming_Delaunay(); the same
@@ -304,7 +293,7 @@ CgalMesh mesh_conforming(rust::Slice<const double> points,
   conformer.init_Delaunay();
   const Budget budget(limits, start);
   std::uint64_t steps = 0;
-  std::string stop;
+  std::uint8_t stop = 0;
   while (!conformer.is_conforming_done()) {
     if (budget.exhausted(steps, cdt.number_of_vertices(), stop)) break;
     if (!conformer.step_by_step_conforming_Delaunay()) break;

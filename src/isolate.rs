@@ -30,7 +30,7 @@ use std::time::{Duration, Instant};
 use crate::error::{Error, InputError, Result};
 use crate::geom::{Hexagon, Turn};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{Budget, MeshRun, Params};
+use crate::mesher::{Budget, MeshRun, Params, StopReason};
 use crate::registry;
 
 /// The hidden subcommand the child runs.
@@ -38,7 +38,7 @@ pub const CHILD_COMMAND: &str = "__run-mesher";
 
 const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
 const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
-const VERSION: u32 = 2;
+const VERSION: u32 = 3;
 /// How much of the child's stderr and stdout an error quotes.
 const TAIL_BYTES: usize = 2000;
 
@@ -101,7 +101,7 @@ pub fn run_isolated(
                 run: MeshRun {
                     mesh: TriMesh::default(),
                     complete: false,
-                    stop_reason: Some(format!("timeout after {}s", timeout.as_secs_f64())),
+                    stop_reason: Some(StopReason::Timeout(timeout)),
                     steps: 0,
                     elapsed,
                 },
@@ -394,10 +394,49 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
     b
 }
 
+/// A stop reason: a tag byte, then its figure or words.
+fn put_stop(b: &mut Vec<u8>, stop: &StopReason) {
+    let duration = |b: &mut Vec<u8>, tag: u8, d: &Duration| {
+        b.push(tag);
+        put_u64(b, d.as_secs());
+        put_u32(b, d.subsec_nanos());
+    };
+    match stop {
+        StopReason::Steps(max) => {
+            b.push(0);
+            put_u64(b, *max);
+        }
+        StopReason::Vertices(max) => {
+            b.push(1);
+            put_u64(b, *max as u64);
+        }
+        StopReason::Time(max) => duration(b, 2, max),
+        StopReason::Rounds(max) => {
+            b.push(3);
+            put_u32(b, *max);
+        }
+        StopReason::Stalled(why) => {
+            b.push(4);
+            put_str(b, why);
+        }
+        StopReason::Timeout(after) => duration(b, 5, after),
+        StopReason::Reported(words) => {
+            b.push(6);
+            put_str(b, words);
+        }
+        // `StopReason` is non-exhaustive: a reason this protocol does not know yet travels
+        // as its words.
+        other => {
+            b.push(6);
+            put_str(b, &other.to_string());
+        }
+    }
+}
+
 fn encode_run(b: &mut Vec<u8>, run: &MeshRun, peak_rss_bytes: u64) {
     b.push(0);
     b.push(u8::from(run.complete));
-    put_opt(b, run.stop_reason.as_deref(), put_str);
+    put_opt(b, run.stop_reason.as_ref(), put_stop);
     put_u64(b, run.steps);
     put_u64(b, run.elapsed.as_secs());
     put_u32(b, run.elapsed.subsec_nanos());
@@ -473,6 +512,29 @@ impl<'a> Reader<'a> {
         let n = self.u32()? as usize;
         let bytes = self.take(n)?;
         String::from_utf8(bytes.to_vec()).map_err(|_| self.bad("string is not UTF-8"))
+    }
+
+    fn duration(&mut self) -> Result<Duration> {
+        let secs = self.u64()?;
+        let nanos = self.u32()?;
+        if nanos >= 1_000_000_000 {
+            return Err(self.bad("nanoseconds out of range"));
+        }
+        Ok(Duration::new(secs, nanos))
+    }
+
+    /// A stop reason as `put_stop` wrote it.
+    fn stop(&mut self) -> Result<StopReason> {
+        Ok(match self.u8()? {
+            0 => StopReason::Steps(self.u64()?),
+            1 => StopReason::Vertices(usize::try_from(self.u64()?).unwrap_or(usize::MAX)),
+            2 => StopReason::Time(self.duration()?),
+            3 => StopReason::Rounds(self.u32()?),
+            4 => StopReason::Stalled(self.str()?),
+            5 => StopReason::Timeout(self.duration()?),
+            6 => StopReason::Reported(self.str()?),
+            b => return Err(self.bad(&format!("stop reason tag {b}"))),
+        })
     }
 
     /// A count of items of `item_bytes` each that must fit in what is left.
@@ -614,7 +676,7 @@ fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
         b => return Err(r.bad(&format!("status byte {b}"))),
     }
     let complete = r.flag()?;
-    let stop_reason = if r.flag()? { Some(r.str()?) } else { None };
+    let stop_reason = if r.flag()? { Some(r.stop()?) } else { None };
     let steps = r.u64()?;
     let secs = r.u64()?;
     let nanos = r.u32()?;
@@ -775,5 +837,31 @@ mod tests {
         assert_eq!(back.run, run);
         assert_eq!(back.peak_rss_bytes, 4096);
         assert!(trailer(&out[..out.len() - 1]).is_none());
+    }
+
+    #[test]
+    fn every_stop_reason_round_trips_with_its_figure() {
+        let reasons = [
+            StopReason::Steps(u64::MAX),
+            StopReason::Vertices(7),
+            StopReason::Time(Duration::new(3, 999_999_999)),
+            StopReason::Rounds(1000),
+            StopReason::Stalled("rounded crossings coincide".into()),
+            StopReason::Timeout(Duration::from_millis(500)),
+            StopReason::Reported("CGAL: ünïcode words".into()),
+        ];
+        for reason in reasons {
+            let run = MeshRun {
+                mesh: TriMesh::default(),
+                complete: false,
+                stop_reason: Some(reason.clone()),
+                steps: 1,
+                elapsed: Duration::ZERO,
+            };
+            let mut payload = Vec::new();
+            encode_run(&mut payload, &run, 0);
+            let back = decode_answer(&payload, "x").unwrap();
+            assert_eq!(back.run.stop_reason, Some(reason));
+        }
     }
 }

@@ -28,7 +28,7 @@ pub mod report;
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};
 pub use mesh::{Pslg, TriMesh};
-pub use mesher::{Budget, MeshRun, Mesher, Params};
+pub use mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 pub use registry::{mesher, mesher_names, meshers};
 
 /// The allocator the `hexmesh` command, the benches and the timing examples declare as their

@@ -130,7 +130,7 @@ pub fn max_angle(
             Ok(iso) if !iso.run.complete => Some(
                 iso.run
                     .stop_reason
-                    .unwrap_or_else(|| "stopped early".to_string()),
+                    .map_or_else(|| "stopped early".to_string(), |r| r.to_string()),
             ),
             Ok(iso) => match check_mesh(input, &iso.run.mesh, conforming) {
                 Err(problem) => Some(format!("invalid mesh: {problem}")),

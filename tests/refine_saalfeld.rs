@@ -5,7 +5,7 @@
 mod refine_support;
 
 use hexmesh::refine::{ConformingRun, Saalfeld};
-use hexmesh::{Budget, Mesher, Params, Pslg};
+use hexmesh::{Budget, Mesher, Params, Pslg, StopReason};
 use proptest::prelude::*;
 use refine_support::*;
 
@@ -158,7 +158,7 @@ fn constructive_refuses_a_piece_count_beyond_the_vertex_budget() {
     });
     let r = s.refine(&square_with_hole(), &params).unwrap();
     assert!(!r.run.complete);
-    assert!(r.run.stop_reason.unwrap().contains("vertex limit"));
+    assert_eq!(r.run.stop_reason, Some(StopReason::Vertices(20)));
 }
 
 #[test]
@@ -175,7 +175,7 @@ fn a_round_budget_stops_early_and_says_so() {
     };
     let r = s.refine(&input, &Params::default()).unwrap();
     assert!(!r.run.complete);
-    assert!(r.run.stop_reason.unwrap().contains("round budget"));
+    assert_eq!(r.run.stop_reason, Some(StopReason::Rounds(0)));
 }
 
 #[test]
@@ -301,10 +301,7 @@ fn a_sliver_between_segments_exhausts_the_round_budget() {
         .refine(&input, &Params::default())
         .unwrap();
     assert!(!r.run.complete);
-    assert_eq!(
-        r.run.stop_reason.as_deref(),
-        Some("round budget of 1000 reached")
-    );
+    assert_eq!(r.run.stop_reason, Some(StopReason::Rounds(1000)));
     assert!(r.added_points > 1000, "{} points added", r.added_points);
     validate(&r.run.mesh).unwrap();
     assert_eq!(delaunay_violations(&r.run.mesh), 0);
@@ -320,11 +317,7 @@ fn a_crossing_below_f64_resolution_stops_with_a_reason_not_a_wrong_mesh() {
         .unwrap();
     assert!(!r.run.complete);
     assert!(
-        r.run
-            .stop_reason
-            .as_deref()
-            .unwrap_or("")
-            .contains("stalled"),
+        matches!(r.run.stop_reason, Some(StopReason::Stalled(_))),
         "{:?}",
         r.run.stop_reason
     );
@@ -360,8 +353,8 @@ proptest! {
             // two per round (`a_sliver_between_segments_exhausts_the_round_budget`): about 1
             // random PSLG in 1000 here needs more than the default 1000 rounds. The stop must
             // say so, and what was built is still a valid Delaunay triangulation.
-            let why = r.run.stop_reason.clone().unwrap_or_default();
-            prop_assert!(why.contains("round budget"), "{}", why);
+            let why = r.run.stop_reason.clone();
+            prop_assert!(matches!(why, Some(StopReason::Rounds(_))), "{:?}", why);
             validate(&r.run.mesh).unwrap();
             prop_assert_eq!(delaunay_violations(&r.run.mesh), 0);
         } else {
@@ -385,10 +378,10 @@ proptest! {
         // Tiny features can ask for more pieces than the budget or the construction's cap: that
         // is reported as a stop naming the piece count, never a silently partial mesh.
         if !r.run.complete {
-            let why = r.run.stop_reason.as_deref().unwrap_or("");
+            let why = r.run.stop_reason.clone();
             prop_assert!(
-                why.contains("needs pieces") || why.contains("vertex"),
-                "an incomplete run must say it ran out of pieces: {why}"
+                matches!(why, Some(StopReason::Vertices(_))),
+                "an incomplete run must say it ran out of pieces: {:?}", why
             );
         }
         prop_assume!(r.run.complete);

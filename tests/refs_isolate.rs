@@ -65,7 +65,12 @@ fn triangle_at_44_degrees_is_cut_off_at_the_timeout() {
     .unwrap();
     let waited = started.elapsed();
     assert!(!iso.run.complete);
-    assert_eq!(iso.run.stop_reason.as_deref(), Some("timeout after 0.5s"));
+    assert_eq!(
+        iso.run.stop_reason,
+        Some(hexmesh::StopReason::Timeout(
+            std::time::Duration::from_millis(500)
+        ))
+    );
     assert!(iso.run.mesh.triangles.is_empty());
     assert!(waited < Duration::from_secs(3), "took {waited:?}");
 }

@@ -396,13 +396,14 @@ fn time_and_vertex_budgets_stop_the_refinement() {
         ..Budget::default()
     });
     let run = Rhomb.mesh(&input, &timed).unwrap();
-    assert!(!run.complete && run.stop_reason.as_deref().unwrap_or("").contains("time"));
+    assert!(!run.complete && matches!(run.stop_reason, Some(hexmesh::StopReason::Time(_))));
     let capped = Params::default().with_budget(Budget {
         max_vertices: Some(1000),
         ..Budget::default()
     });
     let run = Rhomb.mesh(&input, &capped).unwrap();
-    assert!(!run.complete && run.stop_reason.as_deref().unwrap_or("").contains("vertex"));
+    assert_eq!(run.stop_reason, Some(hexmesh::StopReason::Vertices(1000)));
+    assert!(!run.complete);
     assert!(
         run.mesh.vertices.len() < 3000,
         "{}",

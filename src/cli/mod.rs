@@ -331,7 +331,9 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         eprintln!(
             "hexmesh: mesher {} stopped early: {}; no mesh written",
             mesher.name(),
-            run.stop_reason.as_deref().unwrap_or("budget exhausted")
+            run.stop_reason
+                .as_ref()
+                .map_or("budget exhausted".into(), ToString::to_string)
         );
         return Ok(ExitCode::from(1));
     }

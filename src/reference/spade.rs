@@ -36,7 +36,7 @@ use spade::{
 use super::check_params;
 use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{MeshRun, Mesher, Params};
+use crate::mesher::{MeshRun, Mesher, Params, StopReason};
 
 type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
 
@@ -62,6 +62,16 @@ struct Effective {
     max_area: Option<f64>,
     /// `None`: no budget in `Params`, so the default (see `default_extra_vertices`).
     max_additional_vertices: Option<usize>,
+}
+
+/// Which budget a refinement that added `limit` vertices to `initial` ran out of: the step
+/// budget when it is what bounded `limit`, otherwise the vertex budget (the caller's or the
+/// default one), counted in vertices of the whole mesh.
+fn stop_reason(params: &Params, initial: usize, limit: usize) -> StopReason {
+    match params.budget.max_steps {
+        Some(steps) if usize::try_from(steps).is_ok_and(|s| s == limit) => StopReason::Steps(steps),
+        _ => StopReason::Vertices(initial + limit),
+    }
 }
 
 fn effective(params: &Params, initial_vertices: Option<usize>) -> Effective {
@@ -163,7 +173,7 @@ fn default_extra_vertices(initial: usize) -> usize {
     initial.saturating_mul(10).max(MIN_DEFAULT_EXTRA_VERTICES)
 }
 
-type Outcome = (TriMesh, bool, Option<String>, u64);
+type Outcome = (TriMesh, bool, Option<StopReason>, u64);
 
 fn mesh_domain(domain: &Pslg, params: &Params) -> Result<Outcome> {
     let vertices: Vec<Point2<f64>> = domain
@@ -226,8 +236,7 @@ fn mesh_domain(domain: &Pslg, params: &Params) -> Result<Outcome> {
     }
     let added = cdt.num_vertices() - initial;
     let mesh = extract(&cdt, &removed, domain.points.len());
-    let stop_reason = (!result.refinement_complete)
-        .then(|| format!("vertex budget exhausted: spade added its maximum of {limit} vertices"));
+    let stop_reason = (!result.refinement_complete).then(|| stop_reason(params, initial, limit));
     Ok((mesh, result.refinement_complete, stop_reason, added as u64))
 }
 

@@ -80,7 +80,9 @@ pub(super) fn run_case(
                 if !run.complete {
                     errors.push(format!(
                         "stopped early: {}",
-                        run.stop_reason.as_deref().unwrap_or("no reason given")
+                        run.stop_reason
+                            .as_ref()
+                            .map_or("no reason given".into(), ToString::to_string)
                     ));
                     if first.is_none() {
                         first = Some(run);

@@ -104,7 +104,10 @@ pub fn lsb_rows(
                 Ok(iso) => {
                     row.err = one_line(&format!(
                         "{mesher} stopped early: {}",
-                        iso.run.stop_reason.as_deref().unwrap_or("no reason given")
+                        iso.run
+                            .stop_reason
+                            .as_ref()
+                            .map_or("no reason given".into(), ToString::to_string)
                     ))
                 }
                 Err(e) => row.err = one_line(&format!("{mesher}: {e}")),

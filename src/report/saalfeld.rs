@@ -81,7 +81,10 @@ pub fn saalfeld_rows(
                 }
                 Ok(iso) => errs.push(format!(
                     "{SEC5} stopped early: {}",
-                    iso.run.stop_reason.as_deref().unwrap_or("no reason given")
+                    iso.run
+                        .stop_reason
+                        .as_ref()
+                        .map_or("no reason given".into(), ToString::to_string)
                 )),
                 Err(e) => errs.push(format!("{SEC5}: {e}")),
             }

@@ -91,7 +91,10 @@ fn seed_row(exe: &Path, name: &str, mesher: &str, seed: u64, timeout: Duration) 
         Ok(iso) if !iso.run.complete => {
             row.err = one_line(&format!(
                 "stopped early: {}",
-                iso.run.stop_reason.as_deref().unwrap_or("no reason given")
+                iso.run
+                    .stop_reason
+                    .as_ref()
+                    .map_or("no reason given".into(), ToString::to_string)
             ))
         }
         Ok(iso) => {

@@ -88,7 +88,7 @@ pub use geom::{Hexagon, Point};
 pub use hex::extended::Hex;
 pub use hex::HexSimple;
 pub use mesh::{Pslg, TriMesh};
-pub use mesher::{Budget, MeshRun, Mesher, Params};
+pub use mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 pub use quality::Bounds;
 pub use refine::{Lsb, Saalfeld};
 pub use registry::{mesher, meshers};

@@ -67,6 +67,41 @@ impl Params {
     }
 }
 
+/// Why a mesher stopped before it finished. A budget of [`Params::budget`] ran out, a limit of
+/// the mesher's own did, the harness ended the run, or a reference said so in its own words.
+#[derive(Debug, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum StopReason {
+    /// [`Budget::max_steps`]: this many refinement steps were taken.
+    Steps(u64),
+    /// [`Budget::max_vertices`]: the mesh reached this many vertices.
+    Vertices(usize),
+    /// [`Budget::max_time`] ran out.
+    Time(Duration),
+    /// A limit of the mesher itself ran out: this many rounds of Saalfeld's refinement.
+    Rounds(u32),
+    /// The mesher could make no further progress, for the reason given.
+    Stalled(String),
+    /// The run was killed after this long (the harness's isolation timeout).
+    Timeout(Duration),
+    /// A reference mesher stopped early and said why, in its words.
+    Reported(String),
+}
+
+impl std::fmt::Display for StopReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            StopReason::Steps(max) => write!(f, "step budget of {max} reached"),
+            StopReason::Vertices(max) => write!(f, "vertex budget of {max} reached"),
+            StopReason::Time(max) => write!(f, "time budget of {max:?} reached"),
+            StopReason::Rounds(max) => write!(f, "round limit of {max} reached"),
+            StopReason::Stalled(why) => write!(f, "stalled: {why}"),
+            StopReason::Timeout(after) => write!(f, "timeout after {}s", after.as_secs_f64()),
+            StopReason::Reported(words) => f.write_str(words),
+        }
+    }
+}
+
 /// The outcome of one meshing call. Stopping early (a budget ran out) is not an error: the
 /// mesh so far is returned with `complete == false` and the reason.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,7 +111,7 @@ pub struct MeshRun {
     /// False when a budget stopped the mesher before it finished.
     pub complete: bool,
     /// Why the mesher stopped early, when it did.
-    pub stop_reason: Option<String>,
+    pub stop_reason: Option<StopReason>,
     /// Refinement steps taken.
     pub steps: u64,
     /// Time of the meshing call alone.
@@ -100,4 +135,29 @@ pub trait Mesher: Send + Sync {
 
     /// Meshes the input. The input has passed `Pslg::check`.
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun>;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_stop_reason_names_the_limit_and_its_figure() {
+        assert_eq!(
+            StopReason::Steps(40).to_string(),
+            "step budget of 40 reached"
+        );
+        assert_eq!(
+            StopReason::Vertices(1000).to_string(),
+            "vertex budget of 1000 reached"
+        );
+        assert_eq!(
+            StopReason::Timeout(Duration::from_millis(500)).to_string(),
+            "timeout after 0.5s"
+        );
+        assert_eq!(
+            StopReason::Reported("CGAL ran out".into()).to_string(),
+            "CGAL ran out"
+        );
+    }
 }

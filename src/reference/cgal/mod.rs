@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 
 use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{Budget, MeshRun, Mesher, Params};
+use crate::mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 
 #[cxx::bridge(namespace = "hexmesh::cgal")]
 pub mod ffi {
@@ -36,10 +36,9 @@ pub mod ffi {
         triangles: Vec<u32>,
         /// Steiner points inserted.
         steps: u64,
-        /// False when a budget stopped the refinement.
-        complete: bool,
-        /// Why it stopped, when it did; empty otherwise.
-        stop_reason: String,
+        /// The budget that stopped the refinement: 0 none (complete), 1 steps, 2 vertices,
+        /// 3 time.
+        stopped_by: u8,
     }
 
     unsafe extern "C++" {
@@ -128,6 +127,7 @@ fn finish(
     mesher: &str,
     result: std::result::Result<ffi::CgalMesh, cxx::Exception>,
     elapsed: Duration,
+    budget: &Budget,
 ) -> Result<MeshRun> {
     let out = result.map_err(|e| Error::mesher(mesher, format!("CGAL: {}", e.what())))?;
     let mesh = TriMesh {
@@ -138,10 +138,25 @@ fn finish(
             .map(|c| [c[0], c[1], c[2]])
             .collect(),
     };
+    let unlimited = || Error::mesher(mesher, "CGAL stopped by a budget that was not set");
+    let stop_reason = match out.stopped_by {
+        0 => None,
+        1 => Some(StopReason::Steps(budget.max_steps.ok_or_else(unlimited)?)),
+        2 => Some(StopReason::Vertices(
+            budget.max_vertices.ok_or_else(unlimited)?,
+        )),
+        3 => Some(StopReason::Time(budget.max_time.ok_or_else(unlimited)?)),
+        code => {
+            return Err(Error::mesher(
+                mesher,
+                format!("CGAL returned stop code {code}"),
+            ))
+        }
+    };
     Ok(MeshRun {
         mesh,
-        complete: out.complete,
-        stop_reason: (!out.complete).then_some(out.stop_reason),
+        complete: stop_reason.is_none(),
+        stop_reason,
         steps: out.steps,
         elapsed,
     })
@@ -219,7 +234,7 @@ impl Mesher for Cgal {
         let start = Instant::now();
         let (points, segments, holes) = flatten(&domain);
         let result = ffi::mesh_delaunay(&points, &segments, &holes, b, s, &limits(&params.budget));
-        finish(self.name(), result, start.elapsed())
+        finish(self.name(), result, start.elapsed(), &params.budget)
     }
 }
 
@@ -259,7 +274,7 @@ impl Mesher for CgalConforming {
         let start = Instant::now();
         let (points, segments, holes) = flatten(&domain);
         let result = ffi::mesh_conforming(&points, &segments, &holes, &limits(&params.budget));
-        finish(self.name(), result, start.elapsed())
+        finish(self.name(), result, start.elapsed(), &params.budget)
     }
 }
 

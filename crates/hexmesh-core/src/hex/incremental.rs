@@ -37,7 +37,7 @@ impl IncrementalHex {
     pub fn new(input: &Pslg, params: &Params) -> Result<IncrementalHex> {
         let run = extended::mesh_extended(input, params)?;
         if let Some(why) = run.stop {
-            return Err(Error::mesher("hex", why));
+            return Err(Error::mesher("hex", format!("stopped: {why}")));
         }
         Ok(IncrementalHex {
             hierarchy: run.hierarchy,

@@ -38,7 +38,7 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::geom::{Hexagon, Point};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{MeshRun, Mesher, Params};
+use crate::mesher::{MeshRun, Mesher, Params, StopReason};
 use crate::quality::rounding;
 
 pub use dual::Placement;
@@ -149,17 +149,20 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
 /// Runs the simple refinement on a point set and returns the final hierarchy, with the reason
 /// it stopped early when a budget ran out. Errors: segments (not supported), points outside
 /// the bounding hexagon, points too close together for f64 (`InputError::Range`).
-pub fn mesh_with_hierarchy(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<String>)> {
+pub fn mesh_with_hierarchy(
+    input: &Pslg,
+    params: &Params,
+) -> Result<(Hierarchy, Option<StopReason>)> {
     let mut h = new_hierarchy(input, params, "hex-simple")?;
     let stop = run_simple(&mut h)?;
     Ok((h, stop))
 }
 
 /// Runs the simple refinement: `None` when it finished, the reason when a budget stopped it.
-fn run_simple(h: &mut Hierarchy) -> Result<Option<String>> {
+fn run_simple(h: &mut Hierarchy) -> Result<Option<StopReason>> {
     match refine::refine_simple(h) {
         Ok(()) => Ok(None),
-        Err(Stop::Budget(why)) => Ok(Some(format!("stopped by the {why}"))),
+        Err(Stop::Budget(why)) => Ok(Some(why)),
         Err(Stop::Precision(problem)) => Err(Error::input(problem)),
     }
 }
@@ -197,7 +200,7 @@ pub(crate) fn insert_error(mesher: &str, e: InsertError) -> Error {
 /// The error of a refinement stopped by a budget or by the precision limit.
 pub(crate) fn stop_error(mesher: &str, stop: Stop) -> Error {
     match stop {
-        Stop::Budget(why) => Error::mesher(mesher, format!("stopped by the {why}")),
+        Stop::Budget(why) => Error::mesher(mesher, format!("stopped: {why}")),
         Stop::Precision(problem) => Error::input(problem),
     }
 }
@@ -217,7 +220,7 @@ impl IncrementalHexSimple {
         let (hierarchy, stop) = mesh_with_hierarchy(input, params)?;
         match stop {
             None => Ok(IncrementalHexSimple { hierarchy }),
-            Some(why) => Err(Error::mesher("hex-simple", why)),
+            Some(why) => Err(Error::mesher("hex-simple", format!("stopped: {why}"))),
         }
     }
 

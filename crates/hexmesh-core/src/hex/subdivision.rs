@@ -22,7 +22,7 @@ use std::time::Instant;
 use crate::error::InputError;
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, Key, KeySet, Lattice, Parents, MAX_LEVEL};
-use crate::mesher::Budget;
+use crate::mesher::{Budget, StopReason};
 
 /// What a lattice cell is in the current subdivision.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -49,8 +49,8 @@ pub enum Cell {
 /// Why the refinement stopped before it was done.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stop {
-    /// A budget ran out; the message names it.
-    Budget(String),
+    /// A budget ran out.
+    Budget(StopReason),
     /// The points are too close together for the lattice: f64 cannot place the hexagons
     /// they need within the rounding allowance, or they need more than `MAX_LEVEL` levels
     /// (`InputError::Rounding`, naming the two points).
@@ -419,9 +419,7 @@ impl Hierarchy {
     /// (the extended rules), where the check every 256 steps comes too late.
     pub fn check_time(&self) -> Result<(), Stop> {
         match self.budget.max_time {
-            Some(max) if self.start.elapsed() > max => {
-                Err(Stop::Budget(format!("time budget of {max:?}")))
-            }
+            Some(max) if self.start.elapsed() > max => Err(Stop::Budget(StopReason::Time(max))),
             _ => Ok(()),
         }
     }
@@ -436,17 +434,17 @@ impl Hierarchy {
         }
         if let Some(max) = self.budget.max_steps {
             if self.steps >= max {
-                return Err(Stop::Budget(format!("step budget of {max} subdivisions")));
+                return Err(Stop::Budget(StopReason::Steps(max)));
             }
         }
         if let Some(max) = self.budget.max_vertices {
             if self.full_leaves >= max {
-                return Err(Stop::Budget(format!("vertex budget of {max}")));
+                return Err(Stop::Budget(StopReason::Vertices(max)));
             }
         }
         if let Some(max) = self.budget.max_time {
             if self.steps % 256 == 0 && self.start.elapsed() > max {
-                return Err(Stop::Budget(format!("time budget of {max:?}")));
+                return Err(Stop::Budget(StopReason::Time(max)));
             }
         }
         Ok(())

@@ -30,7 +30,7 @@ use super::{carve, compact, domain, ekey, insertion_error, spade_triangles, to_s
 use crate::error::{Error, Result};
 use crate::geom::{dist2, orient2d, Point};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{Budget, MeshRun, Mesher, Params};
+use crate::mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 
 /// The longest-side bisection mesher: `plain` selects plain bisection (Definition 2.1) instead
 /// of the modified rule (Definition 3.2 / rule 4.1).
@@ -124,7 +124,7 @@ struct Engine {
     flips: u64,
     fresh: Vec<u32>,
     limits: Limits,
-    stop: Option<String>,
+    stop: Option<StopReason>,
 }
 
 fn len2(v: &[Point], a: u32, b: u32) -> f64 {

@@ -23,7 +23,7 @@ use spade::{InsertionError, Point2, Triangulation};
 use crate::error::Error;
 use crate::geom::{orient2d, Point};
 use crate::mesh::Pslg;
-use crate::mesher::Budget;
+use crate::mesher::{Budget, StopReason};
 
 /// The domain a refinement mesher works in: a PSLG as given, a point set inside its bounding
 /// hexagon with the hexagon's corners and edges added (`Pslg::reference_domain`), so that
@@ -176,20 +176,20 @@ impl Limits {
 
     /// `Some(reason)` when `steps` reached its limit, `vertices` (the count a step would
     /// leave) exceeds its limit, or time ran out.
-    pub(crate) fn exceeded(&self, steps: u64, vertices: usize) -> Option<String> {
+    pub(crate) fn exceeded(&self, steps: u64, vertices: usize) -> Option<StopReason> {
         if let Some(max) = self.budget.max_steps {
             if steps >= max {
-                return Some(format!("step budget of {max} reached"));
+                return Some(StopReason::Steps(max));
             }
         }
         if let Some(max) = self.budget.max_vertices {
             if vertices > max {
-                return Some(format!("vertex budget of {max} reached"));
+                return Some(StopReason::Vertices(max));
             }
         }
         if let Some(max) = self.budget.max_time {
             if self.start.elapsed() >= max {
-                return Some(format!("time budget of {max:?} reached"));
+                return Some(StopReason::Time(max));
             }
         }
         None

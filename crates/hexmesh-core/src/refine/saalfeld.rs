@@ -38,7 +38,7 @@ use super::{
 use crate::error::Result;
 use crate::geom::{dist, orient2d, Point};
 use crate::mesh::{opposite_signs, Pslg, TriMesh};
-use crate::mesher::{MeshRun, Mesher, Params};
+use crate::mesher::{MeshRun, Mesher, Params, StopReason};
 
 /// Without a vertex budget, the constructive option refuses to place more points than this
 /// (its piece length can be arbitrarily small next to the input's size).
@@ -212,7 +212,7 @@ impl Saalfeld {
             }
         }
         let n_input = st.points.len();
-        let mut stop: Option<String> = None;
+        let mut stop: Option<StopReason> = None;
         let mut constructive_points = 0;
         if self.constructive && !dom.segments.is_empty() {
             match self.construct(&mut st, &dom, params)? {
@@ -237,7 +237,7 @@ impl Saalfeld {
                 break;
             }
             if rounds > self.max_rounds {
-                stop = Some(format!("round budget of {} reached", self.max_rounds));
+                stop = Some(StopReason::Rounds(self.max_rounds));
                 break;
             }
             let new_points: usize = pending
@@ -250,8 +250,9 @@ impl Saalfeld {
                 break;
             }
             if !self.splice(&mut st, pending)? {
-                stop =
-                    Some("stalled: rounded crossing points coincide with existing vertices".into());
+                stop = Some(StopReason::Stalled(
+                    "rounded crossing points coincide with existing vertices".into(),
+                ));
             }
         }
         self.finish(
@@ -300,7 +301,7 @@ impl Saalfeld {
         st: &mut State,
         dom: &Pslg,
         params: &Params,
-    ) -> Result<std::result::Result<usize, String>> {
+    ) -> Result<std::result::Result<usize, StopReason>> {
         let pts = &dom.points;
         let seg = |s: [u32; 2]| (pts[s[0] as usize], pts[s[1] as usize]);
         // ε: the closest pair is a Delaunay edge; vertex–segment distances are checked directly.
@@ -356,10 +357,8 @@ impl Saalfeld {
             let middle = dist(circle[k].0, circle[k].1);
             let n = (middle / h).floor();
             if !n.is_finite() || n >= CONSTRUCTIVE_CAP as f64 {
-                return Ok(Err(format!(
-                    "Sec. 5 construction needs pieces of length {h:e} on a segment of length {:e}",
-                    dist(a, b)
-                )));
+                // Pieces of length h on this segment alone exceed the construction's cap.
+                return Ok(Err(StopReason::Vertices(CONSTRUCTIVE_CAP)));
             }
             let n = n as usize + 1;
             total += n - 1;
@@ -370,9 +369,7 @@ impl Saalfeld {
             .max_vertices
             .map_or(CONSTRUCTIVE_CAP, |m| m.min(CONSTRUCTIVE_CAP));
         if st.points.len() + total > cap {
-            return Ok(Err(format!(
-                "Sec. 5 construction needs {total} points, above the vertex limit of {cap}"
-            )));
+            return Ok(Err(StopReason::Vertices(cap)));
         }
         // Placed points go in by one bulk load: inserted one by one, the points rounded just
         // outside a hull edge each add a fan of slivers, which is quadratic.
@@ -442,7 +439,7 @@ impl Saalfeld {
         constructive_points: usize,
         rounds: u32,
         complete: bool,
-        stop: Option<String>,
+        stop: Option<StopReason>,
         limits: &Limits,
     ) -> Result<ConformingRun> {
         let triangles: Vec<[u32; 3]> = spade_triangles(&st.dt)

@@ -10,7 +10,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 use std::time::Instant;
 
 use super::lattice::{Cell, AROUND, MAX_LEVEL, SIDES};
-use crate::mesher::Budget;
+use crate::mesher::{Budget, StopReason};
 
 /// The window of the crowdedness test: a rhomb x times the cell's size centred at it (Sec. 3,
 /// x = 5 for single points and boundary lines).
@@ -23,8 +23,8 @@ const MIN_LEVEL: u8 = 1;
 /// Why the splitting stopped before the tree was finished.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stop {
-    /// A budget ran out (the reason is spelled for `MeshRun::stop_reason`).
-    Budget(String),
+    /// A budget ran out.
+    Budget(StopReason),
     /// Two input points are closer than the f64 lattice can separate.
     Depth,
 }
@@ -57,21 +57,18 @@ impl Guard {
     pub fn check(&self, tree: &Tree) -> Result<(), Stop> {
         if let Some(max) = self.budget.max_steps {
             if tree.steps >= max {
-                return Err(Stop::Budget(format!("step budget of {max} splits reached")));
+                return Err(Stop::Budget(StopReason::Steps(max)));
             }
         }
         if let Some(max) = self.budget.max_vertices {
             // Every leaf owns about one vertex (its lower-left corner).
             if tree.leaf_count() >= max {
-                return Err(Stop::Budget(format!(
-                    "vertex budget of {max} reached ({} rhombs)",
-                    tree.leaf_count()
-                )));
+                return Err(Stop::Budget(StopReason::Vertices(max)));
             }
         }
         if let Some(max) = self.budget.max_time {
             if self.start.elapsed() >= max {
-                return Err(Stop::Budget(format!("time budget of {max:?} reached")));
+                return Err(Stop::Budget(StopReason::Time(max)));
             }
         }
         Ok(())

@@ -110,7 +110,7 @@ use crate::hex::lattice::KeySet;
 use crate::hex::refine::refine_simple;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::{MeshRun, Mesher, Params};
+use crate::mesher::{MeshRun, Mesher, Params, StopReason};
 
 pub use check::{delaunay_violations, settle_rounding};
 pub use relocate::{relocations, relocations_of};
@@ -241,8 +241,8 @@ pub struct ExtendedRun {
     pub hierarchy: Hierarchy,
     /// Its relocated dual; after a budget stop, the plain dual (centres unmoved).
     pub mesh: TriMesh,
-    /// Why a budget stopped the refinement ("stopped by the …"); `None` when it finished.
-    pub stop: Option<String>,
+    /// Why a budget stopped the refinement; `None` when it finished.
+    pub stop: Option<StopReason>,
     /// What the run did.
     pub stats: ExtendedStats,
     /// The contested ring cells moved after all and the cells placed by `settle_contested`.
@@ -277,7 +277,7 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
             Ok(ExtendedRun {
                 hierarchy: h,
                 mesh,
-                stop: Some(format!("stopped by the {why}")),
+                stop: Some(why),
                 stats,
                 rings,
             })

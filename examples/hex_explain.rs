@@ -6,7 +6,7 @@
 use hexmesh::geom::dist;
 use hexmesh::hex::classify::{classify, rings};
 use hexmesh::hex::extended::mesh_extended;
-use hexmesh::quality::{bounds::HEX_MIN_EDGE_OVER_DMIN, closest_pair};
+use hexmesh::quality::{bounds::HEX, closest_pair};
 use hexmesh::Params;
 
 fn main() {
@@ -16,7 +16,7 @@ fn main() {
     let h = &run.hierarchy;
     let r = rings(h);
     let cp = closest_pair(&input.points).expect("two points");
-    let l_min = cp.distance * HEX_MIN_EDGE_OVER_DMIN;
+    let l_min = cp.distance * HEX.min_edge_over_dmin;
     println!(
         "d_min {} (points {} and {}), l_min {l_min}, {} triangles, stats {:?}",
         cp.distance,

@@ -2,7 +2,7 @@
 //! stress paper 000's guarantees (uniform, clustered, collinear, near-duplicates, extreme
 //! scales, far translations, points exactly on hexagon centres, edges and corners), each meshed
 //! and checked by `quality::verdict` against the bounds the mesher promises
-//! (`quality::Bounds::parse`: Sec. 4.3 for `hex-simple`, Sec. 6 for `hex`). Failing cases are
+//! (`Mesher::promise`: Sec. 4.3 for `hex-simple`, Sec. 6 for `hex`). Failing cases are
 //! written out as Triangle .node files when the campaign is given a directory for them.
 
 use std::path::{Path, PathBuf};
@@ -11,9 +11,9 @@ use rand::RngExt;
 use rand_pcg::Pcg64;
 
 use crate::error::{Error, InputError};
-use crate::geom::{orient2d, Hexagon, Point};
+use crate::geom::{Hexagon, Point};
 use crate::hex::lattice::{Key, Lattice};
-use crate::mesh::{Pslg, TriMesh};
+use crate::mesh::Pslg;
 use crate::mesher::{Mesher, Params};
 use crate::quality;
 
@@ -213,9 +213,8 @@ pub fn fuzz_campaign_sized(
             }
         },
     };
-    // What the mesher promises (`verify --bounds NAME`); a name without bounds of its own
-    // is checked for validity alone.
-    let promised = quality::Bounds::parse(mesher).ok();
+    // What the mesher promises for the parameters of the campaign (`verify --bounds NAME`).
+    let promised = Some(m.promise(&Params::default()));
     for case in 0..cases {
         let (family, input) = generate_sized_case(seed, case, max_points);
         let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
@@ -536,97 +535,6 @@ fn dedup(points: &mut Vec<Point>) {
             true
         }
     });
-}
-
-/// Facts about a checked mesh.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct MeshStats {
-    pub min_angle: f64,
-    pub max_angle: f64,
-    pub triangles: usize,
-}
-
-/// A quick check the tests of the hexagonal meshers use (the campaign checks with
-/// `quality::verdict`): triangles strictly
-/// counter-clockwise (exact), every directed edge used once and every edge by at most two
-/// triangles, no duplicate vertices, input point i is vertex i bit for bit, and (when given)
-/// every angle within the bounds up to its rounding allowance (`quality::rounding`).
-pub fn check_mesh(
-    mesh: &TriMesh,
-    points: &[Point],
-    bounds: Option<(f64, f64)>,
-) -> Result<MeshStats, String> {
-    if mesh.triangles.is_empty() {
-        return Err("the mesh has no triangles".into());
-    }
-    for (i, p) in points.iter().enumerate() {
-        if mesh.vertices.get(i) != Some(p) {
-            return Err(format!(
-                "input point {i} ({}, {}) is not vertex {i}",
-                p[0], p[1]
-            ));
-        }
-    }
-    let nv = mesh.vertices.len() as u32;
-    let mut edges: Vec<(u32, u32)> = Vec::with_capacity(3 * mesh.triangles.len());
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        if tri.iter().any(|&v| v >= nv) {
-            return Err(format!("triangle {t} names a missing vertex"));
-        }
-        let [a, b, c] = mesh.corners(t);
-        if orient2d(a, b, c) <= 0.0 {
-            return Err(format!("triangle {t} {tri:?} is not counter-clockwise"));
-        }
-        for e in 0..3 {
-            edges.push((tri[e], tri[(e + 1) % 3]));
-        }
-    }
-    edges.sort_unstable();
-    if let Some(w) = edges.windows(2).find(|w| w[0] == w[1]) {
-        return Err(format!("directed edge {:?} is used twice", w[0]));
-    }
-    let mut vs: Vec<[u64; 2]> = mesh
-        .vertices
-        .iter()
-        .map(|p| [(p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits()])
-        .collect();
-    vs.sort_unstable();
-    if vs.windows(2).any(|w| w[0] == w[1]) {
-        return Err("two vertices coincide".into());
-    }
-    let used = {
-        let mut u = vec![false; mesh.vertices.len()];
-        for t in &mesh.triangles {
-            for &v in t {
-                u[v as usize] = true;
-            }
-        }
-        u
-    };
-    if let Some(v) = used.iter().position(|&u| !u) {
-        return Err(format!("vertex {v} is in no triangle"));
-    }
-    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
-    for t in 0..mesh.triangles.len() {
-        let c = mesh.corners(t);
-        let (min, max) = bounds.unwrap_or((0.0, 180.0));
-        for u in quality::rounding::angle_uses(t, c, min, max) {
-            lo = lo.min(u.value);
-            hi = hi.max(u.value);
-            if bounds.is_some() && u.used > u.allowance {
-                return Err(format!(
-                    "triangle {t} {:?} has an angle of {:.9}° outside [{min:.6}°, {max}°] by \
-                     more than its rounding allowance of {:e}°",
-                    mesh.triangles[t], u.value, u.allowance
-                ));
-            }
-        }
-    }
-    Ok(MeshStats {
-        min_angle: lo,
-        max_angle: hi,
-        triangles: mesh.triangles.len(),
-    })
 }
 
 /// Writes the points of a failing case as a Triangle .node file into `dir` (created if

@@ -3,11 +3,12 @@
 //! pictures), isolated runs of meshers in child processes and the fuzz campaigns, around the
 //! meshing library `hexmesh-core`.
 //!
-//! The library's modules are re-exported under their own names, so `hexmesh::hex` is
-//! `hexmesh_core::hex`. Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`])
+//! The library's modules are re-exported under their own names, so `hexmesh::quality` is
+//! `hexmesh_core::quality` and `hexmesh::hex` is `hexmesh_core::internals::hex`. Data flow: [`Pslg`] → [`Mesher::mesh`] → [`MeshRun`] (a [`TriMesh`])
 //! → `quality` → `report`.
 
-pub use hexmesh_core::{error, geom, hex, io, mesh, quality, refine, rhomb};
+pub use hexmesh_core::internals::{hex, refine, rhomb};
+pub use hexmesh_core::{error, geom, io, mesh, quality};
 
 /// The library's `mesher` module (`hexmesh_core::mesher`): the trait every mesher sits
 /// behind, its parameters and its result. (A plain re-export would bring the library's

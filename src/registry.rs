@@ -3,6 +3,7 @@
 
 use crate::error::Result;
 use crate::mesher::Mesher;
+use crate::quality::Bounds;
 
 /// Every registered mesher, in report order: the library's (`hexmesh_core::meshers`) with
 /// the references among them.
@@ -39,6 +40,13 @@ pub fn mesher_names() -> Vec<&'static str> {
 /// The mesher or variant called `name`.
 pub fn mesher(name: &str) -> Result<Box<dyn Mesher>> {
     hexmesh_core::registry::find(name, meshers().into_iter().chain(variants()).collect())
+}
+
+/// The bounds `verify --bounds NAME` checks: a registered mesher's or variant's promise under
+/// default parameters (a reference: its default minimum angle), or a generic name (`valid`,
+/// `delaunay`, `min-angle=DEG`).
+pub fn bounds(name: &str) -> Result<Bounds> {
+    hexmesh_core::registry::bounds_among(name, meshers().into_iter().chain(variants()).collect())
 }
 
 #[cfg(test)]

@@ -6,7 +6,7 @@
 use std::collections::HashMap;
 
 use hexmesh::datasets::{self, PslgExample, PSLG_EXAMPLES, SHORT_PIECES, WEDGE_DEG};
-use hexmesh::quality::{verdict, Bounds};
+use hexmesh::quality::verdict;
 use hexmesh::{Params, Point, Pslg};
 
 fn example(name: &str) -> PslgExample {
@@ -295,7 +295,7 @@ fn every_example_resolves_by_name_and_is_written_as_a_poly_file() {
 #[test]
 fn hex_meshes_every_example_valid_conforming_within_its_interior_bounds() {
     use hexmesh::Mesher;
-    let bounds = Bounds::parse("hex").expect("hex bounds");
+    let bounds = hexmesh::registry::bounds("hex").expect("hex bounds");
     for e in datasets::pslg_examples() {
         let run = hexmesh::hex::extended::Hex
             .mesh(&e.pslg, &Params::default())

@@ -8,12 +8,12 @@ use hexmesh::geom::{dist, Point};
 use hexmesh::hex::blossom::{can_form, candidate_tops, coarsen};
 use hexmesh::hex::classify::{classify, rings, Class};
 use hexmesh::hex::dual::{extract_patched, first_inverted, Placement};
-use hexmesh::hex::extended::{delaunay_violations, mesh_extended, min_angle_bound, relocations};
+use hexmesh::hex::extended::{delaunay_violations, mesh_extended, relocations};
 use hexmesh::hex::lattice::{Key, Lattice};
 use hexmesh::hex::mc3::{verdict, Chain, Verdict};
 use hexmesh::hex::{Cell, Hierarchy};
 use hexmesh::mesher::Budget;
-use hexmesh::quality::{verdict as quality_verdict, Bounds};
+use hexmesh::quality::verdict as quality_verdict;
 use hexmesh::{Hexagon, Params};
 
 /// The lattice of the unit hexagon at the origin.
@@ -96,7 +96,7 @@ fn a_plain_region_coarsens_into_a_blossom_of_seven_hexagons_with_sixty_triangles
             .iter()
             .any(|&v| watched.contains(&keys[v as usize]))
     };
-    let lo = min_angle_bound() - 1e-6;
+    let lo = hexmesh::quality::HEX.min_angle - 1e-6;
     let mut count = 0;
     for t in (0..mesh.triangles.len()).filter(|&t| touches(t)) {
         let [a, b, c] = mesh.corners(t);
@@ -165,7 +165,7 @@ fn the_random_datasets_get_blossoms_and_keep_every_hex_bound() {
         let input = hexmesh::datasets::by_name(name).expect("dataset");
         let run = mesh_extended(&input, &Params::default()).expect("meshes");
         assert!(run.stats.blossoms > 0, "{name}: no blossom formed");
-        let bounds = Bounds::parse("hex").expect("bounds");
+        let bounds = hexmesh::registry::bounds("hex").expect("bounds");
         let v = quality_verdict(&run.mesh, Some(&input), Some(&bounds));
         assert!(v.passed(), "{name}: {v}");
     }

@@ -2,9 +2,10 @@
 //! quickly, the Sec. 6 promises hold: angles in [43.8979°, 90°], radius ratio at
 //! most 1.20787, no exact Delaunay violation, shortest edge at least √7/(12√3)·d_min.
 
-use hexmesh::fuzz::check_mesh;
+mod mesh_support;
+
 use hexmesh::geom::{dist, Point};
-use hexmesh::hex::extended::{delaunay_violations, mesh_extended, min_angle_bound};
+use hexmesh::hex::extended::{delaunay_violations, mesh_extended};
 use hexmesh::{Hexagon, Params, Pslg, TriMesh};
 use rand::{RngExt, SeedableRng};
 use rand_pcg::Pcg64;
@@ -22,10 +23,9 @@ fn assert_extended_bounds(input: &Pslg) -> TriMesh {
     let out = mesh_extended(input, &Params::default()).expect("meshes");
     assert!(out.stop.is_none());
     let mesh = out.mesh;
-    check_mesh(&mesh, &input.points, Some((min_angle_bound(), 90.0)))
-        .unwrap_or_else(|e| panic!("{e}"));
+    mesh_support::inputs_first(&mesh, &input.points).unwrap_or_else(|e| panic!("{e}"));
     assert!(delaunay_violations(&mesh).is_empty());
-    let bounds = hexmesh::quality::Bounds::parse("hex").unwrap();
+    let bounds = hexmesh::registry::bounds("hex").unwrap();
     let v = hexmesh::quality::verdict(&mesh, Some(input), Some(&bounds));
     assert!(v.passed(), "{v}");
     let worst = (0..mesh.triangles.len())
@@ -205,7 +205,7 @@ fn a_step_budget_stops_hex_early_with_an_incomplete_valid_mesh() {
     ));
     assert!(run.steps <= 50);
     // A partial hierarchy may still hold several points per hexagon: only validity holds.
-    check_mesh(&run.mesh, &[], None).unwrap_or_else(|e| panic!("{e}"));
+    mesh_support::meets(&run.mesh, &[], "valid").unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]

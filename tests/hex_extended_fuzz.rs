@@ -3,14 +3,16 @@
 
 use std::time::{Duration, Instant};
 
-use hexmesh::fuzz::{check_mesh, generate_case};
+mod mesh_support;
+
+use hexmesh::fuzz::generate_case;
 use hexmesh::hex::extended::Hex;
 use hexmesh::mesher::Budget;
 use hexmesh::{Mesher, Params};
 
 /// Meshes cases `from..to` of `seed` and returns one line per failing or slow case.
 fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
-    let bounds = hexmesh::quality::Bounds::parse("hex").expect("hex bounds");
+    let bounds = hexmesh::registry::bounds("hex").expect("hex bounds");
     let params = Params::default().with_budget(Budget {
         max_time: Some(Duration::from_secs(5)),
         ..Budget::default()
@@ -30,24 +32,21 @@ fn explore(seed: u64, from: u64, to: u64, slow: Duration) -> Vec<String> {
         let msg = match run {
             Err(e) => Some(format!("error {e}")),
             Ok(run) if !run.complete => Some(format!("incomplete {:?}", run.stop_reason)),
-            Ok(run) => {
-                let lo = hexmesh::hex::extended::min_angle_bound();
-                match check_mesh(&run.mesh, &input.points, Some((lo, 90.0))) {
-                    Err(e) => Some(e),
-                    Ok(_) => {
-                        let v = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
-                        (!v.passed()).then(|| {
-                            let fail = format!("{v}")
-                                .lines()
-                                .filter(|l| l.contains("FAIL"))
-                                .map(|l| l.chars().take(60).collect::<String>())
-                                .collect::<Vec<_>>()
-                                .join("; ");
-                            format!("{fail} [{}]", levels(&input))
-                        })
-                    }
+            Ok(run) => match mesh_support::inputs_first(&run.mesh, &input.points) {
+                Err(e) => Some(e),
+                Ok(()) => {
+                    let v = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
+                    (!v.passed()).then(|| {
+                        let fail = format!("{v}")
+                            .lines()
+                            .filter(|l| l.contains("FAIL"))
+                            .map(|l| l.chars().take(60).collect::<String>())
+                            .collect::<Vec<_>>()
+                            .join("; ");
+                        format!("{fail} [{}]", levels(&input))
+                    })
                 }
-            }
+            },
         };
         if msg.is_some() && std::env::var_os("HEX_WRITE").is_some() {
             let _ = hexmesh::fuzz::write_failure(
@@ -133,9 +132,9 @@ fn hex_meets_every_bound_on_a_thousand_fuzz_cases() {
     eprintln!("{s:?}\n{:?}", t.elapsed());
     assert_eq!(s.cases, 1000);
     assert_eq!(s.failures, 0, "{:?}", s.first_failure);
-    // Every angle kept its bounds up to its rounding allowance (`check_mesh`, the verdict:
+    // Every angle kept its bounds up to its rounding allowance (the verdict:
     // no failures), and none used more than the default 0.01°.
-    assert!(s.worst_min_angle >= hexmesh::hex::extended::min_angle_bound() - 0.01);
+    assert!(s.worst_min_angle >= hexmesh::quality::HEX.min_angle - 0.01);
     assert!(s.worst_max_angle <= 90.0 + 0.01);
     assert_eq!(*s.rounding_used.last().unwrap(), 0);
     // Every finished mesh is in a bin (the verdict reported its angle checks).

@@ -2,9 +2,10 @@
 //! refine only around them, and the mesh keeps every Sec. 6 bound, like the mesh of all
 //! points meshed at once.
 
-use hexmesh::fuzz::check_mesh;
+mod mesh_support;
+
 use hexmesh::hex::IncrementalHex;
-use hexmesh::quality::{verdict, Bounds};
+use hexmesh::quality::verdict;
 use hexmesh::{Params, Point, Pslg, TriMesh};
 use proptest::prelude::*;
 use rand::{RngExt, SeedableRng};
@@ -26,9 +27,8 @@ fn middle(points: Vec<Point>) -> Vec<Point> {
 }
 
 fn assert_hex_bounds(what: &str, mesh: &TriMesh, points: &[Point]) {
-    let lo = hexmesh::hex::extended::min_angle_bound();
-    check_mesh(mesh, points, Some((lo, 90.0))).unwrap_or_else(|e| panic!("{what}: {e}"));
-    let bounds = Bounds::parse("hex").unwrap();
+    mesh_support::inputs_first(mesh, points).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let bounds = hexmesh::registry::bounds("hex").unwrap();
     let v = verdict(
         mesh,
         Some(&Pslg::from_points(points.to_vec())),

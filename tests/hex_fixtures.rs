@@ -3,7 +3,8 @@
 
 use std::path::{Path, PathBuf};
 
-use hexmesh::fuzz::check_mesh;
+mod mesh_support;
+
 use hexmesh::hex::HexSimple;
 use hexmesh::{Mesher, Params};
 
@@ -12,9 +13,9 @@ fn check_file(path: &Path) {
     let run = HexSimple
         .mesh(&input, &Params::default())
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    check_mesh(&run.mesh, &input.points, Some((30.0, 120.0)))
+    mesh_support::inputs_first(&run.mesh, &input.points)
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    let bounds = hexmesh::quality::Bounds::parse("hex-simple").unwrap();
+    let bounds = hexmesh::registry::bounds("hex-simple").unwrap();
     let v = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
     assert!(v.passed(), "{}: {v}", path.display());
 }

@@ -1,7 +1,8 @@
 //! Incremental insertion into a finished `hex-simple` mesh (paper 000 Sec. 1 and 9): added
 //! points refine the hierarchy only around them, and the mesh keeps its bounds.
 
-use hexmesh::fuzz::check_mesh;
+mod mesh_support;
+
 use hexmesh::hex::IncrementalHexSimple;
 use hexmesh::{Params, Point, Pslg};
 use rand::{RngExt, SeedableRng};
@@ -29,10 +30,10 @@ fn added_points_become_vertices_and_the_simple_bounds_hold() {
     assert_eq!(ids, (200..300).collect::<Vec<u32>>());
     let all: Vec<Point> = first.iter().chain(&added).copied().collect();
     let mesh = inc.mesh();
-    check_mesh(&mesh, &all, Some((30.0, 120.0))).unwrap_or_else(|e| panic!("{e}"));
+    mesh_support::meets(&mesh, &all, "hex-simple").unwrap_or_else(|e| panic!("{e}"));
     inc.hierarchy().check_invariants().unwrap();
     inc.hierarchy().check_refined().unwrap();
-    let bounds = hexmesh::quality::Bounds::parse("hex-simple").unwrap();
+    let bounds = hexmesh::registry::bounds("hex-simple").unwrap();
     let v = hexmesh::quality::verdict(&mesh, Some(&Pslg::from_points(all)), Some(&bounds));
     assert!(v.passed(), "{v}");
 }
@@ -65,5 +66,5 @@ fn duplicates_and_points_outside_the_hexagon_are_refused() {
     assert!(inc.insert(&[[50.0, 50.0]]).is_err());
     assert!(inc.insert(&[[f64::NAN, 0.5]]).is_err());
     // The refused points left the mesh as it was.
-    check_mesh(&inc.mesh(), &first, Some((30.0, 120.0))).unwrap();
+    mesh_support::meets(&inc.mesh(), &first, "hex-simple").unwrap();
 }

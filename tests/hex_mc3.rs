@@ -8,7 +8,7 @@
 use hexmesh::geom::{dist, Point};
 use hexmesh::hex::classify::rings;
 use hexmesh::hex::dual::{extract_patched, Placement};
-use hexmesh::hex::extended::{delaunay_violations, mesh_extended, min_angle_bound, relocations};
+use hexmesh::hex::extended::{delaunay_violations, mesh_extended, relocations};
 use hexmesh::hex::lattice::{Key, Lattice, DIRS};
 use hexmesh::hex::mc3::{verdict, Chain, Verdict};
 use hexmesh::hex::Hierarchy;
@@ -98,7 +98,7 @@ fn assert_chain_bounds(h: &Hierarchy, expect: Chain) -> usize {
             .iter()
             .any(|&v| watched.contains(&keys[v as usize]))
     };
-    let lo = min_angle_bound() - 1e-6;
+    let lo = hexmesh::quality::HEX.min_angle - 1e-6;
     let mut checked = 0;
     for t in (0..mesh.triangles.len()).filter(|&t| touches(t)) {
         let [a, b, c] = mesh.corners(t);

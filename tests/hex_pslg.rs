@@ -5,8 +5,7 @@
 
 use hexmesh::hex::pslg::{mesh_pslg, PslgRun};
 use hexmesh::quality::{
-    metrics_split, validate, verdict, Bounds, ValidateOptions, ANGLE_SLACK_DEG,
-    HEX_MAX_RADIUS_RATIO, HEX_MIN_ANGLE_DEG, HEX_MIN_EDGE_OVER_DMIN,
+    metrics_split, validate, verdict, Bounds, ValidateOptions, ANGLE_SLACK_DEG, HEX,
 };
 use hexmesh::{datasets, Error, InputError, Params, Point, Pslg};
 use proptest::prelude::*;
@@ -46,18 +45,18 @@ fn mesh_and_check(name: &str, input: &Pslg) -> PslgRun {
         let lo = interior.min_angle.map(|w| w.value).unwrap_or(f64::NAN);
         let hi = interior.max_angle.map(|w| w.value).unwrap_or(f64::NAN);
         assert!(
-            lo >= HEX_MIN_ANGLE_DEG - ANGLE_SLACK_DEG && hi <= 90.0 + ANGLE_SLACK_DEG,
+            lo >= HEX.min_angle - ANGLE_SLACK_DEG && hi <= 90.0 + ANGLE_SLACK_DEG,
             "{name}: interior angles {lo}..{hi}"
         );
         assert_eq!(interior.delaunay_violations, 0, "{name}: interior Delaunay");
         let rr = interior.radius_ratio_max.map_or(0.0, |w| w.value);
         assert!(
-            rr <= HEX_MAX_RADIUS_RATIO,
+            rr <= HEX.max_radius_ratio,
             "{name}: interior radius ratio {rr}"
         );
         let edge = interior.shortest_edge_over_d_min.unwrap_or(f64::INFINITY);
         assert!(
-            edge >= HEX_MIN_EDGE_OVER_DMIN,
+            edge >= HEX.min_edge_over_dmin,
             "{name}: interior shortest edge / d_min {edge}"
         );
     }
@@ -81,7 +80,7 @@ fn mesh_and_check(name: &str, input: &Pslg) -> PslgRun {
 /// agrees with the tolerance band above when every projected centre lies exactly on its
 /// segment, as on axis-parallel segments.
 fn assert_hex_verdict(name: &str, input: &Pslg, run: &PslgRun) {
-    let bounds = Bounds::parse("hex").expect("hex bounds");
+    let bounds = hexmesh::registry::bounds("hex").expect("hex bounds");
     let v = verdict(&run.mesh, Some(input), Some(&bounds));
     assert!(v.passed(), "{name}: {v}");
 }
@@ -166,7 +165,7 @@ fn imr_meshes_valid_conforming_with_interior_bounds() {
         hexagon.interior.min_angle.map_or(f64::NAN, |w| w.value),
         hexagon.interior.max_angle.map_or(f64::NAN, |w| w.value),
     );
-    let bounds = Bounds::parse("hex").expect("hex bounds");
+    let bounds = hexmesh::registry::bounds("hex").expect("hex bounds");
     let v = verdict(&run.mesh, Some(&p), Some(&bounds));
     println!(
         "imr verdict with the hex bounds (touching = exact): passed {}\n{v}",

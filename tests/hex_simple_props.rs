@@ -4,7 +4,9 @@
 //! yields a valid mesh with every input point a vertex, or, only when the points are closer
 //! than f64 can resolve at their coordinates, a clear `InputError::Range`.
 
-use hexmesh::fuzz::{check_mesh, unit_hexagon};
+mod mesh_support;
+
+use hexmesh::fuzz::unit_hexagon;
 use hexmesh::hex::lattice::{Key, Lattice};
 use hexmesh::hex::{mesh_with_hierarchy, HexSimple};
 use hexmesh::{Error, InputError, Mesher, Params, Point, Pslg};
@@ -37,9 +39,8 @@ fn check(input: Pslg, refusable: f64) -> Result<(), TestCaseError> {
     match HexSimple.mesh(&input, &Params::default()) {
         Ok(run) => {
             prop_assert!(run.complete);
-            check_mesh(&run.mesh, &input.points, Some((30.0, 120.0)))
-                .map_err(TestCaseError::fail)?;
-            let bounds = hexmesh::quality::Bounds::parse("hex-simple").expect("known bounds");
+            mesh_support::inputs_first(&run.mesh, &input.points).map_err(TestCaseError::fail)?;
+            let bounds = hexmesh::registry::bounds("hex-simple").expect("known bounds");
             let v = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
             prop_assert!(v.passed(), "{}", v);
         }

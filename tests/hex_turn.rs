@@ -2,15 +2,19 @@
 //! (`geom::principal_turn`): `hex` keeps every bound on the turned lattice, and along a
 //! lattice direction a line of points needs fewer triangles than at the dataset's angle.
 
-use hexmesh::fuzz::check_mesh;
+mod mesh_support;
+
 use hexmesh::hex::{root_hexagon, IncrementalHex};
-use hexmesh::quality::{verdict, Bounds};
+use hexmesh::quality::verdict;
 use hexmesh::{datasets, Hexagon, Params, Point, Pslg, TriMesh};
 
 fn assert_hex_bounds(what: &str, mesh: &TriMesh, input: &Pslg) {
-    let lo = hexmesh::hex::extended::min_angle_bound();
-    check_mesh(mesh, &input.points, Some((lo, 90.0))).unwrap_or_else(|e| panic!("{what}: {e}"));
-    let v = verdict(mesh, Some(input), Some(&Bounds::parse("hex").unwrap()));
+    mesh_support::inputs_first(mesh, &input.points).unwrap_or_else(|e| panic!("{what}: {e}"));
+    let v = verdict(
+        mesh,
+        Some(input),
+        Some(&hexmesh::registry::bounds("hex").unwrap()),
+    );
     assert!(v.passed(), "{what}: {v}");
 }
 

@@ -3,9 +3,7 @@
 
 use std::path::PathBuf;
 
-use hexmesh::quality::{
-    validate, verdict, Bounds, Status, ValidateOptions, Violation, HEX_MIN_ANGLE_DEG,
-};
+use hexmesh::quality::{validate, verdict, Status, ValidateOptions, Violation, HEX};
 use hexmesh::{Pslg, TriMesh};
 
 /// Rows of a Triangle file without comments and blank lines, split into words.
@@ -166,7 +164,7 @@ fn missing_input_point_names_the_input_index() {
 fn non_delaunay_edge_is_valid_but_fails_the_delaunay_bound() {
     let mesh = read_mesh("non_delaunay_edge");
     assert_eq!(plain(&mesh), vec![]);
-    let bounds = Bounds::parse("delaunay").expect("delaunay bounds");
+    let bounds = hexmesh::registry::bounds("delaunay").expect("delaunay bounds");
     let out = verdict(&mesh, None, Some(&bounds));
     assert!(!out.passed(), "{out}");
     assert_eq!(out.metrics.delaunay_violations, 1);
@@ -189,7 +187,7 @@ fn cocircular_square_passes_delaunay_and_hex_with_either_diagonal() {
     ] {
         let mesh = read_mesh(prefix);
         for name in ["delaunay", "hex"] {
-            let bounds = Bounds::parse(name).expect("bounds");
+            let bounds = hexmesh::registry::bounds(name).expect("bounds");
             let out = verdict(&mesh, None, Some(&bounds));
             assert!(out.passed(), "{prefix} with {name}:\n{out}");
             assert_eq!(out.metrics.delaunay_violations, 0);
@@ -202,7 +200,11 @@ fn cocircular_square_passes_delaunay_and_hex_with_either_diagonal() {
 fn angle_43_8978_fails_the_hex_min_angle_at_its_triangle() {
     let mesh = read_mesh("angle_43_8978");
     assert_eq!(plain(&mesh), vec![]);
-    let out = verdict(&mesh, None, Some(&Bounds::parse("hex").expect("hex")));
+    let out = verdict(
+        &mesh,
+        None,
+        Some(&hexmesh::registry::bounds("hex").expect("hex")),
+    );
     assert!(!out.passed(), "{out}");
     let failed: Vec<_> = out
         .checks
@@ -211,19 +213,23 @@ fn angle_43_8978_fails_the_hex_min_angle_at_its_triangle() {
         .collect();
     assert_eq!(failed.len(), 1, "{out}");
     assert_eq!(failed[0].what, "min angle (deg)");
-    assert_eq!(failed[0].limit, HEX_MIN_ANGLE_DEG);
+    assert_eq!(failed[0].limit, HEX.min_angle);
     let worst = failed[0].worst.expect("worst triangle");
     assert_eq!(worst.triangle, 0);
     assert_eq!(worst.corners[0], [0.0, 0.0]);
     assert!((worst.value - 43.8978).abs() < 1e-9, "{}", worst.value);
     // Within the 1e-6° slack it would pass: 43.8978 is 8.6e-5° short.
-    assert!(HEX_MIN_ANGLE_DEG - worst.value > 1e-6);
+    assert!(HEX.min_angle - worst.value > 1e-6);
 }
 
 #[test]
 fn right_angle_exactly_90_passes_the_hex_bounds() {
     let mesh = read_mesh("right_angle_exactly_90");
-    let out = verdict(&mesh, None, Some(&Bounds::parse("hex").expect("hex")));
+    let out = verdict(
+        &mesh,
+        None,
+        Some(&hexmesh::registry::bounds("hex").expect("hex")),
+    );
     assert!(out.passed(), "{out}");
     assert_eq!(out.metrics.max_angle.map(|w| w.value), Some(90.0));
     assert_eq!(out.metrics.min_angle.map(|w| w.value), Some(45.0));
@@ -247,7 +253,7 @@ fn every_fixture_is_readable_and_checked_without_panicking() {
     for p in prefixes {
         let mesh = read_mesh(&p);
         for name in ["hex", "valid"] {
-            let b = Bounds::parse(name).expect("bounds");
+            let b = hexmesh::registry::bounds(name).expect("bounds");
             let out = verdict(&mesh, None, Some(&b));
             let json = serde_json::to_string(&out).expect("verdict as JSON");
             assert!(json.contains("\"checks\""), "{p}: {json}");
@@ -286,7 +292,11 @@ fn no_triangles_is_invalid_so_no_bound_passes_on_it() {
         plain(&mesh).first(),
         Some(&Violation::NoTriangles { vertices: 3 })
     );
-    let out = verdict(&mesh, None, Some(&Bounds::parse("hex").expect("hex")));
+    let out = verdict(
+        &mesh,
+        None,
+        Some(&hexmesh::registry::bounds("hex").expect("hex")),
+    );
     assert!(!out.passed(), "{out}");
 }
 
@@ -323,7 +333,7 @@ fn non_delaunay_by_a_hair_fails_only_the_exact_test() {
     let out = verdict(
         &bad,
         None,
-        Some(&Bounds::parse("delaunay").expect("delaunay")),
+        Some(&hexmesh::registry::bounds("delaunay").expect("delaunay")),
     );
     assert!(!out.passed(), "{out}");
     assert_eq!(out.metrics.delaunay_violations, 1);
@@ -334,7 +344,7 @@ fn non_delaunay_by_a_hair_fails_only_the_exact_test() {
     let out = verdict(
         &good,
         None,
-        Some(&Bounds::parse("delaunay").expect("delaunay")),
+        Some(&hexmesh::registry::bounds("delaunay").expect("delaunay")),
     );
     assert!(out.passed(), "{out}");
 }

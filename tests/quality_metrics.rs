@@ -2,7 +2,7 @@
 //! angles, the histogram, shortest edge over d_min, the two Delaunay counts, and the
 //! near-segment/interior split. Plus d_min against brute force (proptest).
 
-use hexmesh::quality::{closest_pair, metrics, metrics_split, triangle_shape, HEX_MIN_ANGLE_DEG};
+use hexmesh::quality::{closest_pair, metrics, metrics_split, triangle_shape, HEX};
 use hexmesh::{Pslg, TriMesh};
 use proptest::prelude::*;
 
@@ -34,7 +34,7 @@ fn radius_ratio_is_1_20787_for_the_43_9_46_1_90_triangle() {
     );
     let mut angles = s.angles;
     angles.sort_by(f64::total_cmp);
-    assert!((angles[0] - HEX_MIN_ANGLE_DEG).abs() < 1e-9, "{angles:?}");
+    assert!((angles[0] - HEX.min_angle).abs() < 1e-9, "{angles:?}");
     assert!((angles[1] - 46.1021137).abs() < 1e-6, "{angles:?}");
     assert!((angles[2] - 90.0).abs() < 1e-12, "{angles:?}");
 }

@@ -5,9 +5,7 @@
 
 use std::sync::OnceLock;
 
-use hexmesh::quality::{
-    closest_pair, metrics, verdict, Bounds, Metrics, Status, HEX_MAX_RADIUS_RATIO,
-};
+use hexmesh::quality::{closest_pair, metrics, verdict, Metrics, Status, HEX};
 use hexmesh::{Params, Point, Pslg, TriMesh};
 use proptest::prelude::*;
 
@@ -77,7 +75,11 @@ fn cases() -> &'static [(TriMesh, Pslg, Metrics)] {
         [sheared_grid(false), sheared_grid(true), hex_mesh()]
             .into_iter()
             .map(|(mesh, input)| {
-                let v = verdict(&mesh, Some(&input), Some(&Bounds::parse("valid").unwrap()));
+                let v = verdict(
+                    &mesh,
+                    Some(&input),
+                    Some(&hexmesh::registry::bounds("valid").unwrap()),
+                );
                 assert!(v.passed(), "unscaled: {v}");
                 let m = metrics(&mesh, Some(&input));
                 (mesh, input, m)
@@ -197,7 +199,11 @@ fn check(k: usize, f: f64) {
     let m = metrics(&mesh, Some(&input));
     assert_finite(&m, &what);
     assert_matches(&m, unscaled, f, rel, &what);
-    let v = verdict(&mesh, Some(&input), Some(&Bounds::parse("valid").unwrap()));
+    let v = verdict(
+        &mesh,
+        Some(&input),
+        Some(&hexmesh::registry::bounds("valid").unwrap()),
+    );
     assert!(v.violations.is_empty(), "{what}: {v}");
     assert!(v.passed(), "{what}: {v}");
     assert_eq!(v.metrics, m, "{what}");
@@ -243,7 +249,7 @@ fn a_hex_mesh_at_1e80_and_1e_minus_80_keeps_its_radius_ratio() {
     let (mesh, input, unscaled) = &cases()[2];
     let rr = unscaled.radius_ratio_max.expect("triangles").value;
     assert!((rr - 1.2078697).abs() < 1e-6, "unscaled {rr}");
-    let hex = Bounds::parse("hex").unwrap();
+    let hex = hexmesh::registry::bounds("hex").unwrap();
     for f in [1e80, 1e-80] {
         let (scaled, scaled_input) = scale_mesh(mesh, input, f);
         let v = verdict(&scaled, Some(&scaled_input), Some(&hex));
@@ -251,7 +257,7 @@ fn a_hex_mesh_at_1e80_and_1e_minus_80_keeps_its_radius_ratio() {
         assert_finite(m, &format!("{f:e}"));
         let r = m.radius_ratio_max.unwrap().value;
         assert!(
-            (r - 1.2078697).abs() < 1e-6 && r <= HEX_MAX_RADIUS_RATIO,
+            (r - 1.2078697).abs() < 1e-6 && r <= HEX.max_radius_ratio,
             "{f:e}: {r}"
         );
         let row = v
@@ -317,7 +323,11 @@ fn tiny_and_huge_triangles_keep_exact_signs_and_shapes() {
             let what = format!("c = {c:e}, h = {h:e}, long diagonal {long}");
             let unit = metrics(&parallelogram(0.0, 1.0, long), None);
             let mesh = parallelogram(c, h, long);
-            let v = verdict(&mesh, None, Some(&Bounds::parse("valid").unwrap()));
+            let v = verdict(
+                &mesh,
+                None,
+                Some(&hexmesh::registry::bounds("valid").unwrap()),
+            );
             assert!(v.passed(), "{what}: {v}");
             let m = &v.metrics;
             assert_eq!(m.delaunay_violations, usize::from(long), "{what}");

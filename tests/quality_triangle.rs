@@ -2,7 +2,7 @@
 //! quality mesh of a PSLG with a hole, whose segments Triangle splits with Steiner points,
 //! must come out valid, conforming, and within the angle it was asked for.
 
-use hexmesh::quality::{validate, verdict, Bounds, ValidateOptions};
+use hexmesh::quality::{validate, verdict, ValidateOptions};
 use hexmesh::{Pslg, TriMesh};
 use tritet::Trigen;
 
@@ -82,7 +82,7 @@ fn triangle_quality_meshes_of_a_pslg_with_a_hole_are_valid_and_keep_their_angle(
         };
         let v = validate(&mesh, Some(&input), &conforming);
         assert!(v.is_empty(), "area {max_area}: {v:#?}");
-        let bounds = Bounds::parse(&format!("min-angle={min_angle}")).expect("bounds");
+        let bounds = hexmesh::registry::bounds(&format!("min-angle={min_angle}")).expect("bounds");
         let out = verdict(&mesh, Some(&input), Some(&bounds));
         assert!(out.passed(), "{out}");
         // The hole is not covered: 16 − 2.

@@ -1,7 +1,7 @@
 //! `validate` on meshes built in code: the invariants the fixtures do not cover (indices,
 //! non-finite coordinates, overlaps without crossings, touching discs, conformity).
 
-use hexmesh::quality::{metrics, validate, verdict, Bounds, ValidateOptions, Violation};
+use hexmesh::quality::{metrics, validate, verdict, ValidateOptions, Violation};
 use hexmesh::{Pslg, TriMesh};
 
 fn mesh(vertices: &[[f64; 2]], triangles: &[[u32; 3]]) -> TriMesh {
@@ -53,7 +53,12 @@ fn an_index_out_of_range_is_reported_and_nothing_panics() {
     // The figures and the verdict skip the broken triangle rather than panic.
     let m2 = metrics(&m, None);
     assert_eq!(m2.min_angle, None);
-    assert!(!verdict(&m, None, Some(&Bounds::parse("hex").expect("hex"))).passed());
+    assert!(!verdict(
+        &m,
+        None,
+        Some(&hexmesh::registry::bounds("hex").expect("hex"))
+    )
+    .passed());
 }
 
 #[test]
@@ -291,7 +296,7 @@ fn nan_and_infinite_coordinates_are_reported_without_panicking() {
                 .any(|x| matches!(x, Violation::NonFiniteVertex { vertex: 4, .. })),
             "{v:#?}"
         );
-        let hex = Bounds::parse("hex").expect("hex");
+        let hex = hexmesh::registry::bounds("hex").expect("hex");
         let out = verdict(&m, Some(&input), Some(&hex));
         assert!(!out.passed());
         serde_json::to_string(&out).expect("non-finite numbers still serialize");

@@ -1,7 +1,7 @@
 //! `verdict`: bounds per mesher applied to the right part of the mesh, the table `hexmesh
 //! verify` prints, and its JSON.
 
-use hexmesh::quality::{verdict, Bounds, Status};
+use hexmesh::quality::{verdict, Status};
 use hexmesh::{Pslg, TriMesh};
 
 /// A strip of three unit-high columns; the first (next to the segment x = 0) is half as wide,
@@ -67,7 +67,7 @@ fn framed_grid() -> (TriMesh, Pslg) {
 #[test]
 fn hex_bounds_hold_away_from_segments_on_a_pslg() {
     let (mesh, pslg) = framed_grid();
-    let hex = Bounds::parse("hex").expect("hex");
+    let hex = hexmesh::registry::bounds("hex").expect("hex");
     let out = verdict(&mesh, Some(&pslg), Some(&hex));
     assert!(out.passed(), "{out}");
     let split = out.split.as_ref().expect("a PSLG gets the split figures");
@@ -102,7 +102,7 @@ fn hex_bounds_hold_away_from_segments_on_a_pslg() {
 #[test]
 fn shortest_edge_over_d_min_is_skipped_without_input_and_checked_with_it() {
     let (mesh, points) = strip();
-    let hex = Bounds::parse("hex").expect("hex");
+    let hex = hexmesh::registry::bounds("hex").expect("hex");
     let without = verdict(&mesh, None, Some(&hex));
     let row = |v: &hexmesh::quality::Verdict| {
         v.checks
@@ -127,7 +127,7 @@ fn the_json_names_each_check_with_status_value_and_limit() {
     let out = verdict(
         &mesh,
         None,
-        Some(&Bounds::parse("min-angle=30").expect("bounds")),
+        Some(&hexmesh::registry::bounds("min-angle=30").expect("bounds")),
     );
     let json: serde_json::Value = serde_json::to_value(&out).expect("json");
     let checks = json["checks"].as_array().expect("checks array");

@@ -33,7 +33,7 @@ fn budget() -> Budget {
 fn angle_refiners_meet_30_degrees_on_every_small_dataset() {
     let params = Params::default().with_min_angle(30.0).with_budget(budget());
     for name in ["cgal", "triangle", "spade"] {
-        let bounds = Bounds::parse(name)
+        let bounds = hexmesh::registry::bounds(name)
             .and_then(|b| b.with_min_angle(30.0))
             .expect("bounds");
         for dataset in datasets::SMALL {
@@ -45,7 +45,7 @@ fn angle_refiners_meet_30_degrees_on_every_small_dataset() {
 #[test]
 fn cgal_conforming_is_exactly_delaunay_on_every_small_dataset() {
     let params = Params::default().with_budget(budget());
-    let bounds = Bounds::parse("cgal-conforming").expect("bounds");
+    let bounds = hexmesh::registry::bounds("cgal-conforming").expect("bounds");
     assert!(bounds.delaunay);
     for dataset in datasets::SMALL {
         check("cgal-conforming", dataset, &params, &bounds);
@@ -56,7 +56,7 @@ fn cgal_conforming_is_exactly_delaunay_on_every_small_dataset() {
 fn a_32_degree_request_is_met_where_all_three_terminate() {
     let params = Params::default().with_min_angle(32.0).with_budget(budget());
     for name in ["cgal", "triangle", "spade"] {
-        let bounds = Bounds::parse(name)
+        let bounds = hexmesh::registry::bounds(name)
             .and_then(|b| b.with_min_angle(32.0))
             .expect("bounds");
         for dataset in ["close-pair", "plane-100", "imr"] {

@@ -260,7 +260,7 @@ fn registered_under_its_name() {
 /// `verify --bounds lsb` on the run's mesh passes, and the checker's own ancestor search
 /// (centroid location in the initial triangulation) agrees with the mesher's bookkeeping.
 fn assert_lsb_verdict(input: &Pslg, r: &LsbRun) {
-    let bounds = hexmesh::quality::Bounds::parse("lsb").unwrap();
+    let bounds = hexmesh::registry::bounds("lsb").unwrap();
     let v = hexmesh::quality::verdict(&r.run.mesh, Some(input), Some(&bounds));
     assert!(v.passed(), "{v}");
     let d = hexmesh::quality::descent(&r.initial, &r.run.mesh, 0.5);
@@ -316,7 +316,7 @@ fn verify_fails_a_mesh_with_a_sliver_cut_into_a_fat_initial_triangle() {
         vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.5, h], [0.5, 0.02]],
         triangles: vec![[0, 1, 3], [1, 2, 3], [2, 0, 3]],
     };
-    let bounds = hexmesh::quality::Bounds::parse("lsb").unwrap();
+    let bounds = hexmesh::registry::bounds("lsb").unwrap();
     let v = hexmesh::quality::verdict(&mesh, Some(&input), Some(&bounds));
     assert!(!v.passed(), "{v}");
     let failed: Vec<&str> = v

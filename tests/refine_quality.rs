@@ -1,11 +1,11 @@
 //! The refine meshers judged by the project's own checker (`quality::verdict` with the
-//! bounds `quality::Bounds::parse` gives them) on every dataset of the paper: `saalfeld` (both
+//! bounds their `Mesher::promise` gives) on every dataset of the paper: `saalfeld` (both
 //! variants) valid, conforming and Delaunay; `lsb` valid and conforming, every angle at least
 //! half the smallest angle of its initial triangle (the bound that survives adaptive
 //! refinement); and Theorem 3.4 itself, 2/3, on the family T(A, B, C) of every initial triangle.
 
+use hexmesh::quality::verdict;
 use hexmesh::quality::{descent, LSB_ADAPTIVE_RATIO, LSB_FAMILY_RATIO};
-use hexmesh::quality::{verdict, Bounds};
 use hexmesh::refine::{family, lsb_descent_check, min_angle, Lsb, Saalfeld};
 use hexmesh::Budget;
 use hexmesh::{datasets, Mesher, Params};
@@ -15,7 +15,7 @@ const DATASETS: &[&str] = hexmesh::datasets::SMALL;
 
 #[test]
 fn saalfeld_meshes_pass_the_saalfeld_bounds_on_the_datasets() {
-    let bounds = Bounds::parse("saalfeld").unwrap();
+    let bounds = hexmesh::registry::bounds("saalfeld").unwrap();
     for name in DATASETS {
         let input = datasets::by_name(name).unwrap();
         let r = Saalfeld::default()
@@ -29,7 +29,7 @@ fn saalfeld_meshes_pass_the_saalfeld_bounds_on_the_datasets() {
 
 #[test]
 fn lsb_meshes_pass_the_lsb_bounds_and_keep_half_the_initial_angle() {
-    let bounds = Bounds::parse("lsb").unwrap();
+    let bounds = hexmesh::registry::bounds("lsb").unwrap();
     for name in DATASETS {
         let input = datasets::by_name(name).unwrap();
         for lsb in [Lsb { plain: false }, Lsb { plain: true }] {
@@ -62,7 +62,7 @@ fn saalfeld_sec5_meshes_pass_the_saalfeld_bounds_or_stop_naming_the_point_count(
         constructive: true,
         ..Saalfeld::default()
     };
-    let bounds = Bounds::parse("saalfeld-sec5").unwrap();
+    let bounds = hexmesh::registry::bounds("saalfeld-sec5").unwrap();
     let mut complete = 0;
     for name in DATASETS {
         let input = datasets::by_name(name).unwrap();

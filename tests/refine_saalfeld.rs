@@ -271,7 +271,7 @@ proptest! {
 
 /// Everything `verify --bounds saalfeld` checks, from the project's own checker.
 fn assert_verdict_passes(input: &Pslg, mesh: &hexmesh::TriMesh) {
-    let bounds = hexmesh::quality::Bounds::parse("saalfeld").unwrap();
+    let bounds = hexmesh::registry::bounds("saalfeld").unwrap();
     let v = hexmesh::quality::verdict(mesh, Some(input), Some(&bounds));
     assert!(v.passed(), "{v}");
 }

@@ -103,7 +103,7 @@ fn every_segment_mesher_gets_a_checked_row_for_every_example_and_the_readme_a_se
             r["shape"], r["problem"]
         );
         assert!(
-            num(r, "interior_min_angle") >= hexmesh::quality::HEX_MIN_ANGLE_DEG - ANGLE_SLACK_DEG,
+            num(r, "interior_min_angle") >= hexmesh::quality::HEX.min_angle - ANGLE_SLACK_DEG,
             "{}",
             r["shape"]
         );

@@ -12,7 +12,7 @@ use proptest::prelude::*;
 /// slack), plus what `rhomb` promises on top: the area of the bounding hexagon, vertex i is
 /// input point i bit-exactly, the six corners bit-exactly, and our own angle range.
 fn check(input: &Pslg, mesh: &TriMesh) -> Result<(f64, f64), String> {
-    let bounds = quality::Bounds::parse("rhomb").map_err(|e| e.to_string())?;
+    let bounds = hexmesh::registry::bounds("rhomb").map_err(|e| e.to_string())?;
     let verdict = quality::verdict(mesh, Some(input), Some(&bounds));
     if !verdict.passed() {
         return Err(format!("quality verdict failed:\n{verdict}"));

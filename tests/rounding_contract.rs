@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 
 use hexmesh::error::InputError;
 use hexmesh::quality::rounding::{angle_allowance, delta, ANGLE_FLOOR_DEG};
-use hexmesh::quality::{verdict, Bounds, HEX_MIN_ANGLE_DEG};
+use hexmesh::quality::{verdict, HEX};
 use hexmesh::{Error, Params, Pslg, TriMesh};
 
 fn fixtures() -> Vec<PathBuf> {
@@ -39,7 +39,7 @@ fn real_coordinates_and_close_pairs_mesh_and_keep_every_bound() {
         let input = hexmesh::io::read_input(path).unwrap_or_else(|e| panic!("{e}"));
         for name in ["hex", "hex-simple", "rhomb"] {
             let mesh = mesh(name, &input);
-            let bounds = Bounds::parse(name).expect("bounds");
+            let bounds = hexmesh::registry::bounds(name).expect("bounds");
             let v = verdict(&mesh, Some(&input), Some(&bounds));
             assert!(v.passed(), "{} {name}:\n{v}", path.display());
             for c in &v.checks {
@@ -104,7 +104,7 @@ fn the_allowance_is_sound_when_each_vertex_moves_by_its_delta() {
                 );
                 let moved_angle = angles(cm, m);
                 assert!(
-                    moved_angle >= HEX_MIN_ANGLE_DEG - allowance && moved_angle <= 90.0 + allowance,
+                    moved_angle >= HEX.min_angle - allowance && moved_angle <= 90.0 + allowance,
                     "triangle {t} corner {m}: {moved_angle}° with allowance {allowance:e}°"
                 );
             }
@@ -126,7 +126,7 @@ fn an_angle_of_43_8978_degrees_near_unit_coordinates_still_fails() {
         vertices: vec![[0.25, 0.25], [1.25, 0.25], [1.25, 0.25 + tan]],
         triangles: vec![[0, 1, 2]],
     };
-    let bounds = Bounds::parse("hex").expect("hex");
+    let bounds = hexmesh::registry::bounds("hex").expect("hex");
     let v = verdict(&mesh, None, Some(&bounds));
     assert!(!v.passed(), "{v}");
     let min = v
@@ -201,7 +201,7 @@ fn hex_on_a_domain_keeps_its_interior_within_max_rounding_or_refuses_naming_the_
     let hex = hexmesh::mesher("hex").expect("registered");
     let input = square(1e-3);
     let run = hex.mesh(&input, &Params::default()).expect("meshes");
-    let bounds = Bounds::parse("hex").expect("bounds");
+    let bounds = hexmesh::registry::bounds("hex").expect("bounds");
     let v = verdict(&run.mesh, Some(&input), Some(&bounds));
     assert!(v.passed(), "{v}");
     for c in v.checks.iter().filter(|c| c.what.contains("angle")) {

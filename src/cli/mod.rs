@@ -10,7 +10,8 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::error::{Error, Result};
 use crate::mesh::Pslg;
-use crate::mesher::{Budget, Params};
+use crate::mesher::{Budget, Mesher, Params};
+use crate::quality::Bounds;
 
 #[derive(Parser)]
 #[command(
@@ -352,7 +353,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     let failed = if args.no_check {
         None
     } else {
-        failed_promise(mesher.name(), &input, &run.mesh, args.min_angle)?
+        failed_promise(mesher.as_ref(), &params, &input, &run.mesh)
     };
     if let Some(path) = &args.hexagons {
         match mesher.name() {
@@ -393,28 +394,35 @@ fn refuse_to_overwrite_input(args: &MeshArgs, formats: &[crate::io::Format]) -> 
     crate::io::refuse_to_overwrite(&outputs, &crate::io::input_files(path))
 }
 
-/// What `mesh` holds a finished mesh to: the mesher's own promises (`Bounds::parse` of its
-/// name) and, for a reference, the minimum angle it was asked for (its default one when
+/// What `mesh` holds a finished mesh to: what the mesher promises for the run's parameters
+/// (`Mesher::promise`; a reference: the minimum angle it was asked for, its default one when
 /// none was). Returns the bounds' name and the first problem when the mesh fails them: no
 /// mesh is passed on as good without being checked.
 fn failed_promise(
-    mesher: &str,
+    mesher: &dyn Mesher,
+    params: &Params,
     input: &Pslg,
     mesh: &crate::mesh::TriMesh,
-    min_angle: Option<f64>,
-) -> Result<Option<(String, String)>> {
-    let mut bounds = crate::quality::Bounds::parse(mesher)?;
-    let mut name = mesher.to_string();
-    let asked = match min_angle {
-        Some(angle) if crate::report::REFERENCES.contains(&mesher) => Some(angle),
-        _ => crate::reference::default_min_angle(mesher),
+) -> Option<(String, String)> {
+    let bounds = mesher.promise(params);
+    // The `verify --bounds` name that checks the same: a reference's promise is a minimum
+    // angle, which its own name gives only at the default angle.
+    let as_min_angle = bounds.min_angle.map(|angle| format!("min-angle={angle}"));
+    let name = match as_min_angle {
+        Some(generic)
+            if crate::quality::Bounds::named(&generic).is_ok_and(|g| {
+                Bounds {
+                    name: generic.clone(),
+                    ..bounds.clone()
+                } == g
+            }) =>
+        {
+            generic
+        }
+        _ => bounds.name.clone(),
     };
-    if let Some(angle) = asked {
-        bounds = bounds.with_min_angle(angle)?;
-        name = format!("min-angle={angle}");
-    }
     let verdict = crate::quality::verdict(mesh, Some(input), Some(&bounds));
-    Ok((!verdict.passed()).then(|| (name, crate::report::first_problem(&verdict))))
+    (!verdict.passed()).then(|| (name, crate::report::first_problem(&verdict)))
 }
 
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {
@@ -423,7 +431,7 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     let bounds = args
         .bounds
         .as_deref()
-        .map(crate::quality::Bounds::parse)
+        .map(crate::registry::bounds)
         .transpose()?;
     let verdict = crate::quality::verdict(&mesh, input.as_ref(), bounds.as_ref());
     if args.json {

@@ -19,16 +19,15 @@ pub use self::triangle::TriangleMesher;
 use crate::error::{Error, InputError, Result};
 use crate::mesh::Pslg;
 use crate::mesher::Params;
+use crate::quality::Bounds;
 
-/// The minimum angle (degrees) a reference refines to when none is asked for: spade's 30°,
-/// Triangle's bare `q` 20°, CGAL's b = 0.125 (20.7°); `None` for any other mesher.
-pub fn default_min_angle(mesher: &str) -> Option<f64> {
-    match mesher {
-        "spade" => Some(spade::DEFAULT_MIN_ANGLE),
-        "triangle" => Some(triangle::DEFAULT_MIN_ANGLE),
-        #[cfg(feature = "cgal")]
-        "cgal" => Some(cgal::DEFAULT_SHAPE_BOUND.sqrt().asin().to_degrees()),
-        _ => None,
+/// A quality reference's promise: a valid mesh whose every angle is at least the minimum
+/// angle it was asked for, or its `default` one when none was (spade's 30°, Triangle's bare
+/// `q` 20°, CGAL's b = 0.125, 20.7°).
+fn asked_angle(name: &str, params: &Params, default: f64) -> Bounds {
+    Bounds {
+        min_angle: Some(params.min_angle.unwrap_or(default)),
+        ..Bounds::validity(name)
     }
 }
 

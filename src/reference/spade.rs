@@ -37,6 +37,7 @@ use super::check_params;
 use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
+use crate::quality::Bounds;
 
 type Cdt = ConstrainedDelaunayTriangulation<Point2<f64>>;
 
@@ -138,6 +139,10 @@ impl Mesher for SpadeMesher {
 
     fn supports_segments(&self) -> bool {
         true
+    }
+
+    fn promise(&self, params: &Params) -> Bounds {
+        super::asked_angle(self.name(), params, DEFAULT_MIN_ANGLE)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

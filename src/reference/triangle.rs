@@ -33,6 +33,7 @@ use super::check_params;
 use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params};
+use crate::quality::Bounds;
 
 const NAME: &str = "triangle";
 
@@ -123,6 +124,10 @@ impl Mesher for TriangleMesher {
 
     fn supports_segments(&self) -> bool {
         true
+    }
+
+    fn promise(&self, params: &Params) -> Bounds {
+        super::asked_angle(self.name(), params, DEFAULT_MIN_ANGLE)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

@@ -6,14 +6,13 @@
 use std::path::Path;
 use std::time::Duration;
 
+use super::case_params;
 use super::row::{one_line, Row, NOT_RUN};
 use super::stats::Timing;
-use super::{case_params, REFERENCES, REFERENCE_MIN_ANGLE};
-use crate::error::Result;
 use crate::isolate;
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher};
-use crate::quality::{self, Bounds};
+use crate::quality;
 
 /// What one case leaves behind besides its row.
 pub(super) struct Outcome {
@@ -26,19 +25,9 @@ pub(super) struct Outcome {
     pub(super) verdict: Option<quality::Verdict>,
 }
 
-/// The bounds a mesher's output is checked against: its own promise, and for a reference the
-/// minimum angle it was asked for.
-fn bounds_for(mesher: &str) -> Result<Bounds> {
-    let b = Bounds::parse(mesher)?;
-    if REFERENCES.contains(&mesher) {
-        b.with_min_angle(REFERENCE_MIN_ANGLE)
-    } else {
-        Ok(b)
-    }
-}
-
 /// Meshes `input` with `mesher` `runs` times, each in a child of `exe` killed after
-/// `timeout`, and checks the first mesh against the mesher's bounds (`bounds_for`).
+/// `timeout`, and checks the first mesh against what the mesher promises for the parameters
+/// of the run (`Mesher::promise`: for a reference, the minimum angle it was asked for).
 pub(super) fn run_case(
     exe: &Path,
     mesher: &dyn Mesher,
@@ -121,19 +110,8 @@ pub(super) fn run_case(
         }
         return outcome;
     }
-    let bounds = match bounds_for(name) {
-        Ok(b) => Some(b),
-        Err(e) => {
-            let note = format!("no bounds to check: {e}");
-            row.err = if row.err.is_empty() {
-                note
-            } else {
-                format!("{}; {note}", row.err)
-            };
-            None
-        }
-    };
-    let verdict = quality::verdict(&run.mesh, Some(input), bounds.as_ref());
+    let bounds = mesher.promise(&params);
+    let verdict = quality::verdict(&run.mesh, Some(input), Some(&bounds));
     let m = &verdict.metrics;
     row.vertices = Some(m.vertices as u64);
     row.steiner_points = Some(m.vertices.saturating_sub(row.points as usize) as u64);
@@ -154,10 +132,12 @@ pub(super) fn run_case(
     }
     row.valid = Some(verdict.violations.len() as u64);
     row.problem = first_problem(&verdict);
-    if let Some(b) = &bounds {
-        row.bounds_ok = Some(verdict.passed());
-        outcome.bounds = b.min_angle.into_iter().chain(b.max_angle).collect();
-    }
+    row.bounds_ok = Some(verdict.passed());
+    outcome.bounds = bounds
+        .min_angle
+        .into_iter()
+        .chain(bounds.max_angle)
+        .collect();
     outcome.histogram = Some(verdict.metrics.angle_histogram.clone());
     outcome.mesh = Some(run.mesh);
     outcome.verdict = Some(verdict);
@@ -204,7 +184,7 @@ mod tests {
             vertices: vec![[0.0, 0.0], [3f64.sqrt(), 0.0], [0.0, 1.0]],
             triangles: vec![[0, 1, 2]],
         };
-        let b = Bounds::parse("hex").unwrap();
+        let b = crate::registry::bounds("hex").unwrap();
         let v = quality::verdict(&mesh, None, Some(&b));
         let p = first_problem(&v);
         assert!(p.starts_with("min angle (deg) = 30"), "{p}");

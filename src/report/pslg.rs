@@ -17,7 +17,7 @@ use super::row::one_line;
 use super::table1::seconds;
 use crate::datasets::PslgExample;
 use crate::mesher::Mesher;
-use crate::quality::{Verdict, HEX_MIN_ANGLE_DEG};
+use crate::quality::{Verdict, HEX};
 
 /// The columns of `pslg.csv`, in order (the field names of [`PslgRow`]).
 pub const PSLG_COLUMNS: &[&str] = &[
@@ -261,12 +261,13 @@ pub fn render(examples: &[PslgExample], rows: &[PslgRow]) -> String {
     if !hex.is_empty() {
         let _ = writeln!(
             md,
-            "\n`hex` away from the segments, against its bounds [{HEX_MIN_ANGLE_DEG:.4}°, 90°]:\n"
+            "\n`hex` away from the segments, against its bounds [{:.4}°, 90°]:\n",
+            HEX.min_angle
         );
         for r in hex {
             let text = match (r.interior_min_angle, r.interior_max_angle) {
                 (Some(lo), Some(hi)) => {
-                    let held = lo >= HEX_MIN_ANGLE_DEG - crate::quality::ANGLE_SLACK_DEG
+                    let held = lo >= HEX.min_angle - crate::quality::ANGLE_SLACK_DEG
                         && hi <= 90.0 + crate::quality::ANGLE_SLACK_DEG;
                     format!(
                         "{} interior triangles, angles {lo:.4}°–{hi:.4}° ({}); near the \

@@ -64,7 +64,7 @@ pub struct Row {
     /// Number of validity violations (0 = a valid mesh).
     pub valid: Option<u64>,
     /// The verdict passed: the mesh is valid and every bound its mesher promises holds
-    /// (`quality::Bounds::parse` of its name; on a PSLG the shape bounds are checked away from
+    /// for the run's parameters (`Mesher::promise`; on a PSLG the shape bounds are checked away from
     /// the segments).
     pub bounds_ok: Option<bool>,
     /// The first thing the verdict found wrong: a validity violation, else a failed bound

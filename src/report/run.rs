@@ -1,6 +1,6 @@
 //! Running the cases: every mesher on every dataset, each meshing call in a child process of
 //! our binary (`isolate`), checked by `quality` against the bounds its mesher promises
-//! (`quality::Bounds::parse`), and the paper's max-angle protocol (Sec. 8) for the references.
+//! (`Mesher::promise`), and the paper's max-angle protocol (Sec. 8) for the references.
 //! A failure becomes a row with its `err`; nothing here stops the report but a usage error
 //! or an unwritable output directory.
 

@@ -11,7 +11,7 @@ use serde::Serialize;
 
 use super::row::{one_line, Row, NOT_RUN};
 use crate::mesh::Pslg;
-use crate::quality::{self, Bounds};
+use crate::quality;
 use crate::{isolate, Params};
 
 /// The variant name of the Sec. 5 construction (`registry::variants`).
@@ -62,7 +62,7 @@ pub fn saalfeld_rows(
     timeout: Duration,
     mut progress: impl FnMut(&str),
 ) -> Vec<SaalfeldRow> {
-    let bounds = Bounds::parse(SEC5).ok();
+    let bounds = crate::registry::bounds(SEC5).ok();
     inputs
         .iter()
         .map(|(name, input)| {

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use super::row::one_line;
 use super::table1::paper_row;
 use crate::mesher::Params;
-use crate::quality::{verdict, Bounds};
+use crate::quality::verdict;
 use crate::{datasets, isolate};
 
 /// How many seeds: the dataset's own seed and the nine after it.
@@ -99,8 +99,11 @@ fn seed_row(exe: &Path, name: &str, mesher: &str, seed: u64, timeout: Duration) 
         }
         Ok(iso) => {
             row.triangles = iso.run.mesh.triangles.len();
-            row.bounds_passed = match Bounds::parse(mesher) {
-                Ok(b) => verdict(&iso.run.mesh, Some(&input), Some(&b)).passed(),
+            row.bounds_passed = match crate::registry::mesher(mesher) {
+                Ok(m) => {
+                    let b = m.promise(&Params::default());
+                    verdict(&iso.run.mesh, Some(&input), Some(&b)).passed()
+                }
                 Err(e) => {
                     row.err = one_line(&e.to_string());
                     false

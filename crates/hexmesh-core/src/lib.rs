@@ -24,7 +24,7 @@
 //!
 //! let points = (0..10).map(|i| DVec2::new((i as f64 * 0.7).sin(), (i as f64 * 1.3).cos()));
 //! let mesh = hexmesh_core::mesh(points)?;
-//! let hex = hexmesh_core::Bounds::parse("hex")?;
+//! let hex = hexmesh_core::bounds("hex")?;
 //! assert!(hexmesh_core::quality::verdict(&mesh, None, Some(&hex)).passed());
 //! # Ok::<(), hexmesh_core::Error>(())
 //! ```
@@ -65,23 +65,30 @@
 //! # Layers
 //!
 //! [`geom`] (exact predicates, the lattice arithmetic) → [`mod@mesh`] (input and output types) →
-//! [`quality`] (metrics, validation, the rounding allowance, verdicts) → the meshers
-//! ([`hex`], [`rhomb`], [`refine`]) → [`registry`] and the functions above.
+//! [`quality`] (metrics, validation, the rounding allowance, verdicts) → the meshers (their
+//! machinery in [`internals`]: `hex`, `rhomb`, `refine`) → [`registry`] and the functions
+//! above.
 
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod error;
 pub mod geom;
-pub mod hex;
 pub mod io;
 pub mod mesh;
 pub mod mesher;
 pub mod quality;
-pub mod refine;
 pub mod registry;
-pub mod rhomb;
 mod shuffle;
+
+pub mod internals;
+use internals::{hex, refine, rhomb};
+
+/// The library examples of the READMEs, compiled and run as doctests (`cargo test --doc`).
+#[cfg(doctest)]
+#[doc = include_str!("../../../README.md")]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeExamples;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};
@@ -91,7 +98,7 @@ pub use mesh::{Pslg, TriMesh};
 pub use mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 pub use quality::Bounds;
 pub use refine::{Lsb, Saalfeld};
-pub use registry::{mesher, meshers};
+pub use registry::{bounds, mesher, meshers};
 pub use rhomb::Rhomb;
 
 /// Meshes a point set with `hex`: every angle in [43.9°, 90°], radius ratio at most 1.20787,

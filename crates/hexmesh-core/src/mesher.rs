@@ -5,6 +5,7 @@ use std::time::Duration;
 
 use crate::error::Result;
 use crate::mesh::{Pslg, TriMesh};
+use crate::quality::Bounds;
 
 /// The largest rounding allowance, in degrees, that a mesh of ours may use before its input is
 /// refused (`Params::max_rounding`; `quality::rounding` explains the allowance).
@@ -132,6 +133,10 @@ pub trait Mesher: Send + Sync {
 
     /// True when the mesher keeps input segments as chains of mesh edges.
     fn supports_segments(&self) -> bool;
+
+    /// What a finished mesh of a call with `params` keeps, as the bounds `quality::verdict`
+    /// checks it against (a reference: the minimum angle it was asked for, or its default).
+    fn promise(&self, params: &Params) -> Bounds;
 
     /// Meshes the input. The input has passed `Pslg::check`.
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun>;

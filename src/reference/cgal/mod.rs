@@ -14,6 +14,7 @@ use std::time::{Duration, Instant};
 use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Budget, MeshRun, Mesher, Params, StopReason};
+use crate::quality::Bounds;
 
 #[cxx::bridge(namespace = "hexmesh::cgal")]
 pub mod ffi {
@@ -71,6 +72,11 @@ pub mod ffi {
 
 /// CGAL's default shape bound, b = 0.125 (θ ≈ 20.7°): the largest with guaranteed termination.
 pub const DEFAULT_SHAPE_BOUND: f64 = 0.125;
+
+/// The minimum angle of `DEFAULT_SHAPE_BOUND`, degrees: b = sin²θ.
+fn default_min_angle() -> f64 {
+    DEFAULT_SHAPE_BOUND.sqrt().asin().to_degrees()
+}
 
 /// CGAL's version string, e.g. "5.5.1".
 pub fn cgal_version() -> String {
@@ -227,6 +233,10 @@ impl Mesher for Cgal {
         true
     }
 
+    fn promise(&self, params: &Params) -> Bounds {
+        super::asked_angle(self.name(), params, default_min_angle())
+    }
+
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let (b, s) = self.criteria(params)?;
         let domain = domain(input);
@@ -268,6 +278,10 @@ impl Mesher for CgalConforming {
         true
     }
 
+    fn promise(&self, _: &Params) -> Bounds {
+        Bounds::conforming_delaunay(self.name())
+    }
+
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
@@ -285,7 +299,7 @@ mod tests {
     #[test]
     fn shape_bound_of_the_default_angle_is_cgal_default() {
         // CGAL documents b = 0.125 as 20.7°: asin(sqrt(0.125)) = 20.705°.
-        let deg = DEFAULT_SHAPE_BOUND.sqrt().asin().to_degrees();
+        let deg = default_min_angle();
         assert!((deg - 20.705).abs() < 1e-3, "{deg}");
         assert!((shape_bound(30.0) - 0.25).abs() < 1e-15);
     }

@@ -40,6 +40,7 @@ use crate::geom::{Hexagon, Point};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
 use crate::quality::rounding;
+use crate::quality::Bounds;
 
 pub use dual::Placement;
 pub use incremental::IncrementalHex;
@@ -71,6 +72,10 @@ impl Mesher for HexSimple {
 
     fn supports_segments(&self) -> bool {
         false
+    }
+
+    fn promise(&self, _: &Params) -> Bounds {
+        Bounds::angles(self.name(), SIMPLE_ANGLES.0, SIMPLE_ANGLES.1)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
@@ -167,9 +172,12 @@ fn run_simple(h: &mut Hierarchy) -> Result<Option<StopReason>> {
     }
 }
 
+/// The angle bounds of the simple refinement, degrees (Sec. 4.3).
+const SIMPLE_ANGLES: (f64, f64) = (30.0, 120.0);
+
 /// The mesh of `hex-simple` against [30°, 120°] (`quality::rounding::check_angles`).
 fn check_rounded_angles(mesh: &TriMesh, points: &[Point], max_rounding: f64) -> Result<()> {
-    rounding::check_angles(mesh, points, (30.0, 120.0), max_rounding, "hex-simple")
+    rounding::check_angles(mesh, points, SIMPLE_ANGLES, max_rounding, "hex-simple")
 }
 
 /// The error of a failed insertion into a finished mesh of the mesher `mesher`.

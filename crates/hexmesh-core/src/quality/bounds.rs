@@ -1,4 +1,5 @@
-//! What each mesher promises, as checkable bounds, one set per mesher name.
+//! What a mesher promises, as checkable bounds: each mesher gives its own
+//! (`Mesher::promise`); the constructors here are the shapes those promises take.
 //! The hex bounds are Sußner & Greiner 2009: angles in [α, 90°] with tan α = 5/(3√3)
 //! (Sec. 6.1, Fig. 10), radius ratio ≤ 1.20787 (Sec. 6.2), shortest edge ≥ √7/(12√3)·d_min
 //! (Sec. 6.3), Delaunay (Sec. 6.4); on PSLG inputs they hold away from the segments (Sec. 7).
@@ -14,15 +15,55 @@ use crate::error::{Error, Result};
 /// compare a summary figure with a bound (`maxangle`'s protocol, the PSLG report).
 pub const ANGLE_SLACK_DEG: f64 = super::rounding::ANGLE_FLOOR_DEG;
 
-/// The hex minimum angle atan(5/(3√3)) in degrees (paper Fig. 10: 43.9°).
-pub const HEX_MIN_ANGLE_DEG: f64 = 43.897_886_248_013_98;
+/// The criteria of `hex` (paper 000 Sec. 6), one value that its rules, its self-check, its
+/// PSLG path, its promise ([`HexCriteria::bounds`]) and the checks all read.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HexCriteria {
+    /// Smallest angle: atan(5/(3√3)) in degrees (Fig. 10: 43.9°).
+    pub min_angle: f64,
+    /// Largest angle, degrees.
+    pub max_angle: f64,
+    /// The paper's "aspect ratio" bound, which is Verdict's radius ratio R/(2r) of the
+    /// 43.9°/46.1°/90° triangle (1.2078697), rounded up as the paper states it (Sec. 6.2).
+    pub max_radius_ratio: f64,
+    /// Shortest edge over d_min: √7/(12√3) (Sec. 6.3).
+    pub min_edge_over_dmin: f64,
+    /// How far beyond each angle's placement allowance the mesher's own self-check lets an
+    /// angle lie before it repairs the configuration: below the 1e-6° floor of the checks'
+    /// allowance (`quality::rounding`), so the self-check is the stricter of the two.
+    pub self_check_slack: f64,
+}
 
-/// The paper's "aspect ratio" bound, which is Verdict's radius ratio R/(2r) of the
-/// 43.9°/46.1°/90° triangle (1.2078697), rounded up as the paper states it.
-pub const HEX_MAX_RADIUS_RATIO: f64 = 1.20787;
+/// `hex`'s criteria.
+pub const HEX: HexCriteria = HexCriteria {
+    min_angle: 43.897_886_248_013_98,
+    max_angle: 90.0,
+    max_radius_ratio: 1.20787,
+    min_edge_over_dmin: 0.127_293_769_304_328_9,
+    self_check_slack: 1e-7,
+};
 
-/// Shortest edge over d_min for hex: √7/(12√3) (paper Sec. 6.3).
-pub const HEX_MIN_EDGE_OVER_DMIN: f64 = 0.127_293_769_304_328_9;
+// The self-check is the stricter of the two: its slack lies below the checks' allowance floor.
+const _: () = assert!(HEX.self_check_slack < super::rounding::ANGLE_FLOOR_DEG);
+
+impl HexCriteria {
+    /// What a `hex` mesh is checked against: the angles, radius ratio, shortest edge and the
+    /// Delaunay property, on a PSLG away from the segments (Sec. 7).
+    pub fn bounds(&self) -> Bounds {
+        Bounds {
+            max_radius_ratio: Some(self.max_radius_ratio),
+            min_edge_over_dmin: Some(self.min_edge_over_dmin),
+            delaunay: true,
+            ..Bounds::angles("hex", self.min_angle, self.max_angle)
+        }
+    }
+
+    /// The cheap test that every angle of a triangle lies clearly inside the self-check's
+    /// bounds [α − slack, 90° + slack].
+    pub(crate) fn angle_filter(&self) -> super::rounding::AngleWindow {
+        super::rounding::AngleWindow::new(self.min_angle, self.max_angle, self.self_check_slack)
+    }
+}
 
 /// The descent ratio `lsb` promises (paper 003, Sec. 4): every angle at least half the
 /// smallest angle of the initial triangle it descends from.
@@ -32,23 +73,9 @@ pub const LSB_ADAPTIVE_RATIO: f64 = 0.5;
 /// refinement).
 pub const LSB_FAMILY_RATIO: f64 = 2.0 / 3.0;
 
-/// The bound sets `Bounds::parse` knows, for error messages and `--help`.
-pub const BOUND_NAMES: &[&str] = &[
-    "hex",
-    "hex-simple",
-    "rhomb",
-    "cgal",
-    "cgal-conforming",
-    "triangle",
-    "spade",
-    "saalfeld",
-    "saalfeld-sec5",
-    "lsb",
-    "lsb-plain",
-    "valid",
-    "delaunay",
-    "min-angle=DEG",
-];
+/// The bounds that are not a mesher's promise, by name, for `Bounds::named`, error messages
+/// and `--help`; a mesher's name gives its promise (`registry::bounds`).
+pub const GENERIC_BOUNDS: &[&str] = &["valid", "delaunay", "min-angle=DEG"];
 
 /// Bounds a mesh is checked against, on top of validity. `None` means not checked.
 #[derive(Debug, Clone, PartialEq)]
@@ -96,46 +123,46 @@ impl Bounds {
         }
     }
 
-    /// The bounds called `name`: a mesher name (its promises), `valid`, `delaunay` (the
-    /// empty-circle test alone) or `min-angle=DEG`.
-    pub fn parse(name: &str) -> Result<Bounds> {
-        let angles = |lo: f64, hi: f64| {
-            let mut b = Bounds::validity(name);
-            b.min_angle = Some(lo);
-            b.max_angle = Some(hi);
-            b.interior_only_on_segments = true;
-            b
-        };
-        let bounds = match name {
-            "hex" => Bounds {
-                max_radius_ratio: Some(HEX_MAX_RADIUS_RATIO),
-                min_edge_over_dmin: Some(HEX_MIN_EDGE_OVER_DMIN),
-                delaunay: true,
-                ..angles(HEX_MIN_ANGLE_DEG, 90.0)
-            },
-            "hex-simple" => angles(30.0, 120.0),
-            "rhomb" => Bounds {
-                interior_only_on_segments: false,
-                ..angles(30.0, 90.0)
-            },
-            "cgal-conforming" | "saalfeld" | "saalfeld-sec5" => Bounds {
-                delaunay: true,
-                ..Bounds::validity(name)
-            },
-            // Paper 003: plain bisection and the adaptive refinement with rule 4.1 keep half
-            // the smallest angle of the initial triangle (Sec. 4); 2/3 needs every quaternary
-            // split completed, which only uniform refinement does (Theorem 3.4).
-            "lsb" | "lsb-plain" => Bounds {
-                min_angle_over_ancestor: Some(LSB_ADAPTIVE_RATIO),
-                ..Bounds::validity(name)
-            },
-            "cgal" | "triangle" | "spade" | "valid" => Bounds::validity(name),
-            "delaunay" => Bounds {
+    /// Angles in [lo, hi] degrees on top of validity; on a PSLG checked away from the
+    /// segments.
+    pub fn angles(name: &str, lo: f64, hi: f64) -> Bounds {
+        Bounds {
+            min_angle: Some(lo),
+            max_angle: Some(hi),
+            interior_only_on_segments: true,
+            ..Bounds::validity(name)
+        }
+    }
+
+    /// Validity and the exact Delaunay property: a conforming Delaunay mesher's promise.
+    pub fn conforming_delaunay(name: &str) -> Bounds {
+        Bounds {
+            delaunay: true,
+            ..Bounds::validity(name)
+        }
+    }
+
+    /// Validity and every triangle's smallest angle at least `ratio` times that of the
+    /// initial triangle it lies in (`quality::descent`): longest-side bisection's promise.
+    pub fn descent(name: &str, ratio: f64) -> Bounds {
+        Bounds {
+            min_angle_over_ancestor: Some(ratio),
+            ..Bounds::validity(name)
+        }
+    }
+
+    /// The bounds that are no mesher's promise: `valid` (validity alone), `delaunay` (the
+    /// empty-circle test alone) or `min-angle=DEG` (validity and a smallest angle). A
+    /// mesher's name is looked up by `registry::bounds`.
+    pub fn named(name: &str) -> Result<Bounds> {
+        match name {
+            "valid" => Ok(Bounds::validity(name)),
+            "delaunay" => Ok(Bounds {
                 delaunay: true,
                 conforming: false,
                 single_component: false,
                 ..Bounds::validity(name)
-            },
+            }),
             _ => match name.strip_prefix("min-angle=") {
                 Some(deg) => {
                     let value: f64 = deg.trim().parse().map_err(|_| {
@@ -143,17 +170,14 @@ impl Bounds {
                             "bounds '{name}': '{deg}' is not a number of degrees"
                         ))
                     })?;
-                    Bounds::validity(name).with_min_angle(value)?
+                    Bounds::validity(name).with_min_angle(value)
                 }
-                None => {
-                    return Err(Error::Usage(format!(
-                        "unknown bounds '{name}'; valid names: {}",
-                        BOUND_NAMES.join(", ")
-                    )))
-                }
+                None => Err(Error::Usage(format!(
+                    "unknown bounds '{name}'; valid names: {}",
+                    GENERIC_BOUNDS.join(", ")
+                ))),
             },
-        };
-        Ok(bounds)
+        }
     }
 
     /// These bounds with a minimum angle (degrees), e.g. the angle a reference mesher was
@@ -174,74 +198,58 @@ mod tests {
     use super::*;
 
     #[test]
-    fn hex_constants_match_their_formulas() {
+    fn hex_criteria_match_their_formulas() {
         let alpha = (5.0 / (3.0 * 3f64.sqrt())).atan().to_degrees();
-        assert!((HEX_MIN_ANGLE_DEG - alpha).abs() < 1e-12, "{alpha}");
+        assert_eq!(HEX.min_angle.to_bits(), alpha.to_bits(), "{alpha}");
         let edge = 7f64.sqrt() / (12.0 * 3f64.sqrt());
-        assert!((HEX_MIN_EDGE_OVER_DMIN - edge).abs() < 1e-15, "{edge}");
+        assert!((HEX.min_edge_over_dmin - edge).abs() < 1e-15, "{edge}");
         // Right triangle with legs 5 and 3√3: R/(2r) = c / (2(a + b − c)).
         let (a, b) = (5.0, 3.0 * 3f64.sqrt());
         let c = (a * a + b * b).sqrt();
         let rr = c / (2.0 * (a + b - c));
         assert!(
-            rr <= HEX_MAX_RADIUS_RATIO && HEX_MAX_RADIUS_RATIO - rr < 1e-6,
+            rr <= HEX.max_radius_ratio && HEX.max_radius_ratio - rr < 1e-6,
             "{rr}"
         );
     }
 
     #[test]
-    fn mesher_names_parse_to_their_promises() {
-        let hex = Bounds::parse("hex").expect("hex");
-        assert_eq!(hex.min_angle, Some(HEX_MIN_ANGLE_DEG));
+    fn the_hex_promise_is_its_criteria() {
+        let hex = HEX.bounds();
+        assert_eq!(hex.min_angle, Some(HEX.min_angle));
         assert_eq!(hex.max_angle, Some(90.0));
+        assert_eq!(hex.max_radius_ratio, Some(HEX.max_radius_ratio));
         assert!(hex.delaunay && hex.conforming && hex.single_component);
-        let simple = Bounds::parse("hex-simple").expect("hex-simple");
-        assert_eq!(
-            (simple.min_angle, simple.max_angle),
-            (Some(30.0), Some(120.0))
-        );
-        assert!(!simple.delaunay);
-        let rhomb = Bounds::parse("rhomb").expect("rhomb");
-        assert_eq!((rhomb.min_angle, rhomb.max_angle), (Some(30.0), Some(90.0)));
-        assert!(Bounds::parse("saalfeld").expect("saalfeld").delaunay);
-        assert!(Bounds::parse("cgal-conforming").expect("cgal-c").delaunay);
-        let cgal = Bounds::parse("cgal").expect("cgal");
-        assert!(!cgal.delaunay && cgal.min_angle.is_none());
-        for lsb in ["lsb", "lsb-plain"] {
-            let b = Bounds::parse(lsb).expect("lsb");
-            assert_eq!(b.min_angle_over_ancestor, Some(0.5));
-            assert!(b.conforming && !b.delaunay);
-        }
-        assert!(cgal.min_angle_over_ancestor.is_none());
+        assert!(hex.interior_only_on_segments);
     }
 
     #[test]
     fn min_angle_parses_and_rejects_nonsense() {
         assert_eq!(
-            Bounds::parse("min-angle=33.5").expect("33.5").min_angle,
+            Bounds::named("min-angle=33.5").expect("33.5").min_angle,
             Some(33.5)
         );
         assert!(matches!(
-            Bounds::parse("min-angle=abc"),
+            Bounds::named("min-angle=abc"),
             Err(Error::Usage(_))
         ));
         assert!(matches!(
-            Bounds::parse("min-angle=75"),
+            Bounds::named("min-angle=75"),
             Err(Error::Usage(_))
         ));
         assert!(matches!(
-            Bounds::parse("min-angle=NaN"),
+            Bounds::named("min-angle=NaN"),
             Err(Error::Usage(_))
         ));
     }
 
     #[test]
-    fn an_unknown_name_lists_the_valid_ones() {
-        match Bounds::parse("hexx") {
+    fn an_unknown_name_lists_the_generic_ones() {
+        match Bounds::named("hexx") {
             Err(Error::Usage(msg)) => {
                 assert!(
                     msg.contains("hexx")
-                        && msg.contains("hex-simple")
+                        && msg.contains("delaunay")
                         && msg.contains("min-angle=DEG"),
                     "{msg}"
                 )

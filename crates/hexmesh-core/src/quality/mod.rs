@@ -1,7 +1,7 @@
 //! Checks and figures for triangle meshes: is the mesh valid, how good
 //! are its triangles, and does it keep what its mesher promises.
 
-/// The bounds each mesher promises, by name.
+/// What meshers promise, as checkable bounds; `hex`'s criteria.
 pub mod bounds;
 /// d_min, the closest pair of input points, in O(n log n).
 pub mod closest_pair;
@@ -17,8 +17,7 @@ pub mod validate;
 pub mod verdict;
 
 pub use bounds::{
-    Bounds, ANGLE_SLACK_DEG, BOUND_NAMES, HEX_MAX_RADIUS_RATIO, HEX_MIN_ANGLE_DEG,
-    HEX_MIN_EDGE_OVER_DMIN, LSB_ADAPTIVE_RATIO, LSB_FAMILY_RATIO,
+    Bounds, HexCriteria, ANGLE_SLACK_DEG, GENERIC_BOUNDS, HEX, LSB_ADAPTIVE_RATIO, LSB_FAMILY_RATIO,
 };
 pub use closest_pair::{closest_pair, ClosestPair};
 pub use descent::{descent, Descent};

@@ -31,6 +31,7 @@ use crate::error::{Error, Result};
 use crate::geom::{dist2, orient2d, Point};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Budget, MeshRun, Mesher, Params, StopReason};
+use crate::quality::{Bounds, LSB_ADAPTIVE_RATIO};
 
 /// The longest-side bisection mesher: `plain` selects plain bisection (Definition 2.1) instead
 /// of the modified rule (Definition 3.2 / rule 4.1).
@@ -802,6 +803,13 @@ impl Mesher for Lsb {
 
     fn supports_segments(&self) -> bool {
         true
+    }
+
+    fn promise(&self, _: &Params) -> Bounds {
+        // Paper 003: plain bisection and the adaptive refinement with rule 4.1 keep half the
+        // smallest angle of the initial triangle (Sec. 4); 2/3 needs every quaternary split
+        // completed, which only uniform refinement does (Theorem 3.4).
+        Bounds::descent(self.name(), LSB_ADAPTIVE_RATIO)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

@@ -39,6 +39,7 @@ use crate::error::Result;
 use crate::geom::{dist, orient2d, Point};
 use crate::mesh::{opposite_signs, Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
+use crate::quality::Bounds;
 
 /// Without a vertex budget, the constructive option refuses to place more points than this
 /// (its piece length can be arbitrarily small next to the input's size).
@@ -518,6 +519,10 @@ impl Mesher for Saalfeld {
 
     fn supports_segments(&self) -> bool {
         true
+    }
+
+    fn promise(&self, _: &Params) -> Bounds {
+        Bounds::conforming_delaunay(self.name())
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

@@ -28,7 +28,7 @@ fn vertical_pair_far_from_the_origin_meshes_within_its_rounding_allowance() {
 /// Meshes `input` under the default allowance, checks it, and sees it refused at `strict`°.
 fn within_allowance_or_refused(input: &Pslg, strict: f64) {
     let run = Rhomb.mesh(input, &Params::default()).unwrap();
-    let bounds = crate::quality::Bounds::parse("rhomb").unwrap();
+    let bounds = Rhomb.promise(&Params::default());
     let v = crate::quality::verdict(&run.mesh, Some(input), Some(&bounds));
     assert!(v.passed(), "{v}");
     let used = v
@@ -95,7 +95,7 @@ fn a_point_rounding_left_just_inside_the_hexagon_edge_is_meshed_as_its_boundary_
     assert!(crate::geom::orient2d(c[0], c[1], input.points[1]) < 1e-16);
     let run = Rhomb.mesh(&input, &Params::default()).unwrap();
     assert!(run.complete);
-    let bounds = crate::quality::Bounds::parse("rhomb").unwrap();
+    let bounds = Rhomb.promise(&Params::default());
     let v = crate::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
     assert!(v.passed(), "{v}");
     assert!((run.mesh.area() - hex.area()).abs() < 1e-12);

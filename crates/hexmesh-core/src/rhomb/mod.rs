@@ -27,6 +27,7 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::mesh::Pslg;
 use crate::mesher::{MeshRun, Mesher, Params};
+use crate::quality::Bounds;
 
 use lattice::Frame;
 use tree::{Guard, Stop, Tree};
@@ -59,6 +60,14 @@ impl Mesher for Rhomb {
 
     fn supports_segments(&self) -> bool {
         false
+    }
+
+    fn promise(&self, _: &Params) -> Bounds {
+        // Point sets only for now: every triangle, the hexagon's boundary included.
+        Bounds {
+            interior_only_on_segments: false,
+            ..Bounds::angles(NAME, 30.0, 90.0)
+        }
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

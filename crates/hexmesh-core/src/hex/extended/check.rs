@@ -6,18 +6,14 @@
 //! (`offending_leaves`). A pair only rounding made non-Delaunay (the cocircular quadruples of
 //! Sec. 6.4 in real arithmetic) is flipped once the mesh is done (`settle_rounding`).
 
-use super::min_angle_bound;
 use crate::error::{Error, Result};
 use crate::geom::angle_deg;
 use crate::geom::{incircle, orient2d, Point};
 use crate::hex::lattice::Key;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
-use crate::quality::rounding::{self, AngleWindow};
-
-/// Slack of the self-check beyond the rounding allowance of each angle: below the 1e-6° floor
-/// of the checks' allowance (`quality::rounding`).
-pub(super) const SELF_CHECK_SLACK: f64 = 1e-7;
+use crate::quality::rounding;
+use crate::quality::HEX;
 
 /// True when an angle of `t` lies beyond [α, 90°] by more than the self-check's slack plus
 /// what placing its corners explains (`rounding::placement_allowance`: one rounding of each
@@ -30,15 +26,9 @@ pub(super) const SELF_CHECK_SLACK: f64 = 1e-7;
 pub(crate) fn breaks_bounds(t: &[Point; 3]) -> bool {
     (0..3).any(|m| {
         let (a, b, c) = (t[m], t[(m + 1) % 3], t[(m + 2) % 3]);
-        let beyond = rounding::beyond(angle_deg(a, b, c), min_angle_bound(), 90.0);
-        beyond > SELF_CHECK_SLACK + rounding::placement_allowance(a, b, c)
+        let beyond = rounding::beyond(angle_deg(a, b, c), HEX.min_angle, HEX.max_angle);
+        beyond > HEX.self_check_slack + rounding::placement_allowance(a, b, c)
     })
-}
-
-/// The cheap test that every angle of a triangle lies clearly inside the self-check's bounds
-/// [α − slack, 90° + slack] (`quality::rounding::AngleWindow`).
-pub(super) fn angle_filter() -> AngleWindow {
-    AngleWindow::new(min_angle_bound(), 90.0, SELF_CHECK_SLACK)
 }
 
 /// A triangle of the dual that breaks the angle bounds or the exact empty-circle test.
@@ -58,7 +48,7 @@ pub(super) fn offending_leaves(
     keys: &[Key],
     rounding_pairs: &mut u64,
 ) -> Vec<BadTriangle> {
-    let filter = angle_filter();
+    let filter = HEX.angle_filter();
     let mut bad_tris: Vec<usize> = Vec::new();
     for t in 0..mesh.triangles.len() {
         let c = mesh.corners(t);
@@ -184,9 +174,9 @@ pub(super) fn rounding_made(mesh: &TriMesh, t: usize, u: usize) -> bool {
     let v = |i: u32| mesh.vertices[i as usize];
     let (p, q, w1, w2) = (v(p), v(q), v(w1), v(w2));
     let excess = angle_deg(w1, p, q) + angle_deg(w2, q, p) - 180.0;
-    excess <= SELF_CHECK_SLACK
+    excess <= HEX.self_check_slack
         || excess
-            <= SELF_CHECK_SLACK
+            <= HEX.self_check_slack
                 + rounding::angle_allowance(w1, p, q)
                 + rounding::angle_allowance(w2, q, p)
                 - 2.0 * rounding::ANGLE_FLOOR_DEG
@@ -232,7 +222,13 @@ pub fn settle_rounding(
             ));
         }
     }
-    rounding::check_angles(mesh, points, (min_angle_bound(), 90.0), max_rounding, "hex")
+    rounding::check_angles(
+        mesh,
+        points,
+        (HEX.min_angle, HEX.max_angle),
+        max_rounding,
+        "hex",
+    )
 }
 
 /// The flips of `settle_rounding`, at most `FLIP_ROUNDS` rounds of them.

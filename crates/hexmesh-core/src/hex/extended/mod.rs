@@ -111,6 +111,7 @@ use crate::hex::refine::refine_simple;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
+use crate::quality::{Bounds, HEX};
 
 pub use check::{delaunay_violations, settle_rounding};
 pub use relocate::{relocations, relocations_of};
@@ -118,11 +119,6 @@ pub(crate) use repair::extend_and_verify;
 pub use rings::RingState;
 use rings::{apply_placed, rings_with_flips};
 pub(crate) use rules::around;
-
-/// The smallest angle of the extended refinement, atan(5/(3√3)), in degrees.
-pub fn min_angle_bound() -> f64 {
-    (5.0 / (3.0 * 3f64.sqrt())).atan().to_degrees()
-}
 
 /// The extended hexagonal mesher (Sec. 5).
 #[derive(Debug, Clone, Copy, Default)]
@@ -187,6 +183,10 @@ impl Mesher for Hex {
         true
     }
 
+    fn promise(&self, _: &Params) -> Bounds {
+        HEX.bounds()
+    }
+
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let start = Instant::now();
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
@@ -197,7 +197,7 @@ impl Mesher for Hex {
             crate::quality::rounding::check_interior_angles(
                 &out.mesh,
                 input,
-                (min_angle_bound(), 90.0),
+                (HEX.min_angle, HEX.max_angle),
                 params.max_rounding_deg(),
                 self.name(),
             )?;

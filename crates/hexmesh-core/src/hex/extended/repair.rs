@@ -113,7 +113,7 @@ impl<'a> Repair<'a> {
         changed: Option<Vec<Key>>,
     ) -> Repair<'a> {
         let l_min = crate::quality::closest_pair(&h.points).map_or(0.0, |c| {
-            c.distance * crate::quality::bounds::HEX_MIN_EDGE_OVER_DMIN * (1.0 + 1e-9)
+            c.distance * crate::quality::HEX.min_edge_over_dmin * (1.0 + 1e-9)
         });
         if let Some(c) = &changed {
             state.forget_near(h, c);

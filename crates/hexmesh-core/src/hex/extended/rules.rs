@@ -3,7 +3,7 @@
 //! departures listed in the module docs of `extended` (boundary fins, spread MOVED_CENTER
 //! triangles), and the cells whose rules a batch of subdivisions can change (`around`).
 
-use super::check::{angle_filter, breaks_bounds};
+use super::check::breaks_bounds;
 use crate::geom::Point;
 use crate::hex::classify::{
     classify, fin_class, subdivided_and_neighbours, Class, FinStrip, Rings,
@@ -12,6 +12,7 @@ use crate::hex::lattice::{FxHashSet, Key, KeySet};
 use crate::hex::mc3;
 use crate::hex::parallel::{in_parallel_from, PARALLEL_MIN};
 use crate::hex::subdivision::Hierarchy;
+use crate::quality::HEX;
 
 /// The hexagons the extended rules of Sec. 5.2 (with the departures of the module docs) want
 /// subdivided or made full, sorted.
@@ -221,7 +222,7 @@ pub(super) fn spread_moved_triangle(
             Some((n, moved_centre(h, n, c, s)?))
         })
         .collect();
-    let filter = angle_filter();
+    let filter = HEX.angle_filter();
     for d in 0..6 {
         let (Some((a, pa)), Some((b, pb))) = (near[d], near[(d + 1) % 6]) else {
             continue;

@@ -5,14 +5,13 @@
 //! edge of Sec. 6.3), and `polish_rings`, a finer pattern search, is the last resort before a
 //! subdivision below the r_min of Sec. 6.3.
 
-use super::check::{angle_filter, SELF_CHECK_SLACK};
-use super::min_angle_bound;
 use crate::geom::angle_deg;
 use crate::geom::{orient2d, Point};
 use crate::hex::classify::Rings;
 use crate::hex::lattice::{FxHashMap, Key, KeyBytes};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
+use crate::quality::HEX;
 
 /// Keeps in `placed` the place of every vertex of `mesh` (with canonical keys `keys`) that
 /// `moves` moved and that ends elsewhere than it stood before.
@@ -66,7 +65,7 @@ pub(super) fn angle_margin(t: [Point; 3]) -> f64 {
     ];
     let lo = a[0].min(a[1]).min(a[2]);
     let hi = a[0].max(a[1]).max(a[2]);
-    (lo - min_angle_bound()).min(90.0 - hi)
+    (lo - HEX.min_angle).min(90.0 - hi)
 }
 
 /// Places the centres of contested ring cells (departure from Sec. 5.4, module docs).
@@ -100,7 +99,7 @@ pub(super) fn settle_contested(
     if r.contested.is_empty() && !with_neighbours {
         return Moves::default();
     }
-    let slack = SELF_CHECK_SLACK;
+    let slack = HEX.self_check_slack;
     // The vertices of contested cells, with their lattice centre and radius, sorted by key.
     let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
     for (v, k) in keys.iter().enumerate() {
@@ -149,7 +148,7 @@ pub(super) fn settle_contested(
     // A triangle that is counter-clockwise and whose angles are clearly within the bounds
     // (`angle_filter`) has a margin above -slack: it adds nothing to `bad` or `pen`, and
     // its margin is measured only when `worst` is asked for.
-    let filter = angle_filter();
+    let filter = HEX.angle_filter();
     let corners_at = |mesh: &TriMesh, t: usize, v: usize, p: Point| -> [Point; 3] {
         let mut c = mesh.corners(t);
         for (m, &w) in mesh.triangles[t].iter().enumerate() {
@@ -284,7 +283,7 @@ pub(super) fn polish_rings(
     l_min: f64,
     movable: &dyn Fn(Key) -> bool,
 ) -> Moves {
-    let slack = SELF_CHECK_SLACK;
+    let slack = HEX.self_check_slack;
     // Ring cells by canonical key.
     let mut ring: FxHashMap<Key, Key> = FxHashMap::default();
     for &c in r.roles.keys() {

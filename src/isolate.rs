@@ -424,6 +424,11 @@ fn put_stop(b: &mut Vec<u8>, stop: &StopReason) {
             b.push(6);
             put_str(b, words);
         }
+        StopReason::VertexLimit { needed, limit } => {
+            b.push(7);
+            put_u64(b, *needed as u64);
+            put_u64(b, *limit as u64);
+        }
         // `StopReason` is non-exhaustive: a reason this protocol does not know yet travels
         // as its words.
         other => {
@@ -533,6 +538,10 @@ impl<'a> Reader<'a> {
             4 => StopReason::Stalled(self.str()?),
             5 => StopReason::Timeout(self.duration()?),
             6 => StopReason::Reported(self.str()?),
+            7 => StopReason::VertexLimit {
+                needed: usize::try_from(self.u64()?).unwrap_or(usize::MAX),
+                limit: usize::try_from(self.u64()?).unwrap_or(usize::MAX),
+            },
             b => return Err(self.bad(&format!("stop reason tag {b}"))),
         })
     }
@@ -849,6 +858,10 @@ mod tests {
             StopReason::Stalled("rounded crossings coincide".into()),
             StopReason::Timeout(Duration::from_millis(500)),
             StopReason::Reported("CGAL: ünïcode words".into()),
+            StopReason::VertexLimit {
+                needed: usize::MAX,
+                limit: 2_000_000,
+            },
         ];
         for reason in reasons {
             let run = MeshRun {

@@ -72,7 +72,7 @@ fn saalfeld_sec5_meshes_pass_the_saalfeld_bounds_or_stop_naming_the_point_count(
             // pieces on the hexagon's edges; the construction refuses instead of running out.
             let why = r.run.stop_reason;
             assert!(
-                matches!(why, Some(hexmesh::StopReason::Vertices(_))),
+                matches!(why, Some(hexmesh::StopReason::VertexLimit { .. })),
                 "{name}: {why:?}"
             );
             continue;

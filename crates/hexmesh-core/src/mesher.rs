@@ -79,6 +79,14 @@ pub enum StopReason {
     Vertices(usize),
     /// [`Budget::max_time`] ran out.
     Time(Duration),
+    /// The mesh would need `needed` vertices (`usize::MAX`: more than a count holds), above
+    /// the `limit` of the vertex budget or of the mesher itself, so it was not started.
+    VertexLimit {
+        /// Vertices the mesh would need.
+        needed: usize,
+        /// The most it may have.
+        limit: usize,
+    },
     /// A limit of the mesher itself ran out: this many rounds of Saalfeld's refinement.
     Rounds(u32),
     /// The mesher could make no further progress, for the reason given.
@@ -95,6 +103,15 @@ impl std::fmt::Display for StopReason {
             StopReason::Steps(max) => write!(f, "step budget of {max} reached"),
             StopReason::Vertices(max) => write!(f, "vertex budget of {max} reached"),
             StopReason::Time(max) => write!(f, "time budget of {max:?} reached"),
+            StopReason::VertexLimit { needed, limit } if *needed == usize::MAX => {
+                write!(
+                    f,
+                    "needs more vertices than a count holds, above the limit of {limit}"
+                )
+            }
+            StopReason::VertexLimit { needed, limit } => {
+                write!(f, "needs {needed} vertices, above the limit of {limit}")
+            }
             StopReason::Rounds(max) => write!(f, "round limit of {max} reached"),
             StopReason::Stalled(why) => write!(f, "stalled: {why}"),
             StopReason::Timeout(after) => write!(f, "timeout after {}s", after.as_secs_f64()),

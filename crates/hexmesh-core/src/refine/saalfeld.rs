@@ -359,7 +359,14 @@ impl Saalfeld {
             let n = (middle / h).floor();
             if !n.is_finite() || n >= CONSTRUCTIVE_CAP as f64 {
                 // Pieces of length h on this segment alone exceed the construction's cap.
-                return Ok(Err(StopReason::Vertices(CONSTRUCTIVE_CAP)));
+                return Ok(Err(StopReason::VertexLimit {
+                    needed: if n.is_finite() {
+                        n as usize
+                    } else {
+                        usize::MAX
+                    },
+                    limit: CONSTRUCTIVE_CAP,
+                }));
             }
             let n = n as usize + 1;
             total += n - 1;
@@ -370,7 +377,10 @@ impl Saalfeld {
             .max_vertices
             .map_or(CONSTRUCTIVE_CAP, |m| m.min(CONSTRUCTIVE_CAP));
         if st.points.len() + total > cap {
-            return Ok(Err(StopReason::Vertices(cap)));
+            return Ok(Err(StopReason::VertexLimit {
+                needed: st.points.len() + total,
+                limit: cap,
+            }));
         }
         // Placed points go in by one bulk load: inserted one by one, the points rounded just
         // outside a hull edge each add a fan of slivers, which is quadratic.

@@ -23,10 +23,12 @@ use crate::quality::Bounds;
 
 /// A quality reference's promise: a valid mesh whose every angle is at least the minimum
 /// angle it was asked for, or its `default` one when none was (spade's 30°, Triangle's bare
-/// `q` 20°, CGAL's b = 0.125, 20.7°).
+/// `q` 20°, CGAL's b = 0.125, 20.7°), but at input corners sharper than that, which it takes
+/// whole (Delaunay refinement cannot split a sharp input angle into better ones).
 fn asked_angle(name: &str, params: &Params, default: f64) -> Bounds {
     Bounds {
         min_angle: Some(params.min_angle.unwrap_or(default)),
+        whole_sharp_corners: true,
         ..Bounds::validity(name)
     }
 }

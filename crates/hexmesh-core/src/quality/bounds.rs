@@ -103,6 +103,10 @@ pub struct Bounds {
     /// On inputs with segments, the shape bounds (angles, radius ratio, edge, Delaunay) are
     /// checked on the triangles that do not touch a segment (paper Sec. 7).
     pub interior_only_on_segments: bool,
+    /// An angle below `min_angle` passes where it is an input corner sharper than
+    /// `min_angle` taken whole: at an input point, both of its edges along input segments
+    /// from there (paper 001's exception; a split corner does not pass).
+    pub whole_sharp_corners: bool,
 }
 
 impl Bounds {
@@ -120,6 +124,7 @@ impl Bounds {
             conforming: true,
             single_component: true,
             interior_only_on_segments: false,
+            whole_sharp_corners: false,
         }
     }
 
@@ -152,7 +157,8 @@ impl Bounds {
     }
 
     /// The bounds that are no mesher's promise: `valid` (validity alone), `delaunay` (the
-    /// empty-circle test alone) or `min-angle=DEG` (validity and a smallest angle). A
+    /// empty-circle test alone) or `min-angle=DEG` (validity and a smallest angle, but at
+    /// input corners sharper than it taken whole, which no mesh can improve). A
     /// mesher's name is looked up by `registry::bounds`.
     pub fn named(name: &str) -> Result<Bounds> {
         match name {
@@ -170,7 +176,10 @@ impl Bounds {
                             "bounds '{name}': '{deg}' is not a number of degrees"
                         ))
                     })?;
-                    Bounds::validity(name).with_min_angle(value)
+                    Ok(Bounds {
+                        whole_sharp_corners: true,
+                        ..Bounds::validity(name).with_min_angle(value)?
+                    })
                 }
                 None => Err(Error::Usage(format!(
                     "unknown bounds '{name}'; valid names: {}",

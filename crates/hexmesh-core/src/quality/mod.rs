@@ -5,6 +5,8 @@
 pub mod bounds;
 /// d_min, the closest pair of input points, in O(n log n).
 pub mod closest_pair;
+/// Input corners sharper than a minimum angle, taken whole.
+mod corners;
 /// Longest-side bisection's descent bound: each triangle against the initial one it lies in.
 pub mod descent;
 /// Angles, radius ratio, edge ratio, shortest edge / d_min, Delaunay counts.

@@ -9,7 +9,7 @@ use crate::mesh::{Pslg, TriMesh};
 use crate::quality::bounds::Bounds;
 use crate::quality::descent::descent;
 use crate::quality::metrics::{metrics, metrics_split, triangle_shape, Metrics, SplitMetrics};
-use crate::quality::rounding::{self, angle_fit, fit_of, Fit, Use, ANGLE_FLOOR_DEG};
+use crate::quality::rounding::{self, angle_fit, angle_uses, fit_of, Fit, Use, ANGLE_FLOOR_DEG};
 use crate::quality::validate::{validate, ValidateOptions, Violation};
 
 /// The outcome of one check.
@@ -171,15 +171,37 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 note: note.clone(),
             });
         };
+        let mut exempt_corners = 0usize;
         if let Some(limit) = b.min_angle {
-            let fit = angle_fit(covered(), limit, 180.0);
-            bound(
-                "min angle (deg)",
-                m.min_angle.map(|w| w.value),
-                true,
-                limit,
-                fit,
-            );
+            // Input corners sharper than the bound, taken whole, are the input's, not the
+            // mesher's (`quality::corners`): their angles are left out, and counted.
+            let corners = input
+                .filter(|i| b.whole_sharp_corners && i.has_segments())
+                .map(super::corners::InputCorners::new);
+            let mut exempt = 0usize;
+            let mut smallest: Option<f64> = None;
+            let mut uses = Vec::new();
+            for (t, c) in covered() {
+                for (k, u) in angle_uses(t, c, limit, 180.0).into_iter().enumerate() {
+                    let whole = u.value < limit
+                        && corners
+                            .as_ref()
+                            .is_some_and(|k3| k3.whole_at(c[k], c[(k + 1) % 3], c[(k + 2) % 3]));
+                    if whole {
+                        exempt += 1;
+                    } else {
+                        smallest = Some(smallest.map_or(u.value, |s: f64| s.min(u.value)));
+                        uses.push(u);
+                    }
+                }
+            }
+            let value = if corners.is_some() {
+                smallest
+            } else {
+                m.min_angle.map(|w| w.value)
+            };
+            bound("min angle (deg)", value, true, limit, fit_of(uses));
+            exempt_corners = exempt;
         }
         if let Some(limit) = b.max_angle {
             let fit = angle_fit(covered(), 0.0, limit);
@@ -239,6 +261,19 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                     rounding: None,
                     note: Some("needs the input points (two or more)".to_string()),
                 }),
+            }
+        }
+        if exempt_corners > 0 {
+            if let Some(check) = checks.iter_mut().find(|c| c.what == "min angle (deg)") {
+                let words = format!(
+                    "{exempt_corners} angle{} at input corners sharper than the bound, taken \
+                     whole, left out",
+                    if exempt_corners == 1 { "" } else { "s" }
+                );
+                check.note = Some(match check.note.take() {
+                    Some(n) => format!("{n}; {words}"),
+                    None => words,
+                });
             }
         }
         if let Some(r) = b.min_angle_over_ancestor {

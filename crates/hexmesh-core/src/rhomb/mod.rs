@@ -63,9 +63,11 @@ impl Mesher for Rhomb {
     }
 
     fn promise(&self, _: &Params) -> Bounds {
-        // Point sets only for now: every triangle, the hexagon's boundary included.
+        // Every triangle, near segments too, but at input corners sharper than 30° taken
+        // whole (paper 001's promise).
         Bounds {
             interior_only_on_segments: false,
+            whole_sharp_corners: true,
             ..Bounds::angles(NAME, 30.0, 90.0)
         }
     }

@@ -33,7 +33,7 @@ mod crossings;
 mod holes;
 mod input;
 mod topology;
-mod vertices;
+pub(super) mod vertices;
 mod violation;
 mod winding;
 

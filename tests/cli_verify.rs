@@ -212,3 +212,30 @@ fn every_fixture_has_its_node_file() {
         }
     }
 }
+
+#[test]
+fn a_domain_mesh_with_holes_passes_its_bounds_without_the_input() {
+    // Without --input nothing says the mesh is of a point set: its hole is the domain's.
+    let dir = std::env::temp_dir().join(format!("hexmesh-verify-holes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prefix = dir.join("holes");
+    let p = prefix.to_str().unwrap();
+    let made = hexmesh(&["mesh", "pslg-holes", "--mesher", "triangle", "-o", p]);
+    assert!(made.status.success(), "{made:?}");
+    let out = hexmesh(&["verify", p, "--bounds", "triangle"]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{text}");
+    assert!(!text.contains("hole in the mesh"), "{text}");
+    // With the input saying it is a point set, the same mesh is not one disc.
+    let points = dir.join("points.node");
+    let mesh = hexmesh::io::read_mesh(&prefix).unwrap();
+    hexmesh::io::write_pslg(
+        &points,
+        &hexmesh::Pslg::from_points(mesh.vertices[..4].to_vec()),
+    )
+    .unwrap();
+    let out = hexmesh(&["verify", p, "--input", points.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("hole in the mesh"));
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -98,8 +98,6 @@ pub struct Bounds {
     pub delaunay: bool,
     /// Every input segment is a chain of mesh edges.
     pub conforming: bool,
-    /// The mesh of a point set is one disc (applies only to inputs without segments).
-    pub single_component: bool,
     /// On inputs with segments, the shape bounds (angles, radius ratio, edge, Delaunay) are
     /// checked on the triangles that do not touch a segment (paper Sec. 7).
     pub interior_only_on_segments: bool,
@@ -122,7 +120,6 @@ impl Bounds {
             min_angle_over_ancestor: None,
             delaunay: false,
             conforming: true,
-            single_component: true,
             interior_only_on_segments: false,
             whole_sharp_corners: false,
         }
@@ -166,7 +163,6 @@ impl Bounds {
             "delaunay" => Ok(Bounds {
                 delaunay: true,
                 conforming: false,
-                single_component: false,
                 ..Bounds::validity(name)
             }),
             _ => match name.strip_prefix("min-angle=") {
@@ -228,7 +224,7 @@ mod tests {
         assert_eq!(hex.min_angle, Some(HEX.min_angle));
         assert_eq!(hex.max_angle, Some(90.0));
         assert_eq!(hex.max_radius_ratio, Some(HEX.max_radius_ratio));
-        assert!(hex.delaunay && hex.conforming && hex.single_component);
+        assert!(hex.delaunay && hex.conforming);
         assert!(hex.interior_only_on_segments);
     }
 

@@ -96,14 +96,14 @@ impl Verdict {
 }
 
 /// Validates `mesh` and checks it against `bounds`. Without bounds, only validity (with
-/// conformity and the one-disc rule off) is decided and the figures are reported.
+/// conformity off) is decided and the figures are reported. The one-disc rule applies when
+/// `input` is a point set: without it, a mesh with holes may be the mesh of a domain.
 pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) -> Verdict {
-    let has_segments = input.is_some_and(|i| i.has_segments());
     let options = ValidateOptions {
         // The mesh of a point set is one disc, whatever the bounds: a second boundary loop is a
-        // hole the mesher had no business making.
-        single_component: !has_segments
-            && (input.is_some() || bounds.is_some_and(|b| b.single_component)),
+        // hole the mesher had no business making. Without the input nothing says the mesh is
+        // of a point set, and a mesh of a domain may have holes.
+        single_component: input.is_some_and(|i| !i.has_segments()),
         conforming: bounds.is_some_and(|b| b.conforming),
     };
     let violations = validate(mesh, input, &options);

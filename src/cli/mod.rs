@@ -405,24 +405,25 @@ fn failed_promise(
     mesh: &crate::mesh::TriMesh,
 ) -> Option<(String, String)> {
     let bounds = mesher.promise(params);
-    // The `verify --bounds` name that checks the same: a reference's promise is a minimum
-    // angle, which its own name gives only at the default angle.
-    let as_min_angle = bounds.min_angle.map(|angle| format!("min-angle={angle}"));
-    let name = match as_min_angle {
-        Some(generic)
-            if crate::quality::Bounds::named(&generic).is_ok_and(|g| {
-                Bounds {
-                    name: generic.clone(),
-                    ..bounds.clone()
-                } == g
-            }) =>
-        {
-            generic
-        }
-        _ => bounds.name.clone(),
-    };
     let verdict = crate::quality::verdict(mesh, Some(input), Some(&bounds));
-    (!verdict.passed()).then(|| (name, crate::report::first_problem(&verdict)))
+    (!verdict.passed()).then(|| (verify_name(&bounds), crate::report::first_problem(&verdict)))
+}
+
+/// The `verify --bounds` name that checks what `bounds` check: `min-angle=DEG` when that is
+/// all they are (a reference's promise, which its own name gives only at its default angle),
+/// otherwise the mesher's name.
+fn verify_name(bounds: &Bounds) -> String {
+    if let Some(angle) = bounds.min_angle {
+        let generic = format!("min-angle={angle}");
+        let as_generic = Bounds {
+            name: generic.clone(),
+            ..bounds.clone()
+        };
+        if Bounds::named(&generic).is_ok_and(|g| g == as_generic) {
+            return generic;
+        }
+    }
+    bounds.name.clone()
 }
 
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {

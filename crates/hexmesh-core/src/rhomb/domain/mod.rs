@@ -1,0 +1,193 @@
+//! `rhomb` on polygonal domains (paper 001 Sec. 3–5): a polygon with polygonal holes and
+//! single interior points. One step a file, each opening with the section it implements:
+//! - `input` (Sec. 3, the permitted input): the segments read as polygons, hole seeds, the
+//!   refusals, the extra corner of a triangle;
+//! - `corner` (Sec. 3, corner condition; Sec. 5.6–5.8): each corner's class by its angle,
+//!   decided with exact signs (`exact`);
+//! - `crowded` (Sec. 3, step 2): the elements and the 7/5 windows;
+//! - `condition` (step 3): the corner condition.
+//!
+//! Steps 1–3 run (`quad_tree`). Not yet implemented, so `Rhomb::supports_segments` stays
+//! false and a permitted domain is refused after its quad-tree is built: centring (steps 4–5,
+//! Sec. 5.4), the cut-off acute corners (step 6, Sec. 5.6), the moving conditions (step 7,
+//! Sec. 5.1), moving corners and border-boxes (steps 8, 11, Sec. 5.2–5.3), deleting the
+//! rhombs outside (step 9), and the triangulations of steps 10 and 12–16 (Sec. 5.5–5.8).
+
+mod condition;
+mod corner;
+mod crowded;
+mod exact;
+mod input;
+
+use crate::error::{Error, Result};
+use crate::geom::Hexagon;
+use crate::mesh::Pslg;
+use crate::mesher::Params;
+
+use super::lattice::Frame;
+use super::tree::{Guard, Stop, Tree};
+use corner::Class;
+use input::Domain;
+
+/// Reads `input` as a polygonal domain (Sec. 3), builds its quad-tree (steps 1–3) and tells
+/// what of the method is missing. The refusals of `input::permitted` are input errors naming
+/// a segment or point.
+pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
+    let domain = input::permitted(input).map_err(Error::input)?;
+    let classes: Vec<Vec<Class>> = domain
+        .polygons
+        .iter()
+        .map(|poly| corner::classes(&domain.points, poly))
+        .collect();
+    let guard = Guard::new(params.budget);
+    let tree = match quad_tree(&domain, &classes, &guard) {
+        Ok(tree) => tree,
+        Err(Stop::Budget(reason)) => return Err(Error::mesher(super::NAME, reason)),
+        Err(Stop::Depth) => {
+            return Err(Error::mesher(
+                super::NAME,
+                format!(
+                    "the domain's elements are closer than the lattice's deepest level ({}) \
+                     separates",
+                    super::lattice::MAX_LEVEL
+                ),
+            ))
+        }
+    };
+    let mut count = [0usize; 3];
+    for class in classes.iter().flatten() {
+        count[match class {
+            Class::Acute { .. } => 0,
+            Class::Middle => 1,
+            Class::Obtuse => 2,
+        }] += 1;
+    }
+    Err(Error::mesher(
+        super::NAME,
+        format!(
+            "the input is a permitted polygonal domain ({} polygons; corners: {} of at most \
+             60°, {} of 60°-150°, {} above 150°; {} single points; {} rhombs after steps 1-3), \
+             but rhomb does not mesh domains yet (paper 001 Sec. 4 steps 4-16)",
+            domain.polygons.len(),
+            count[0],
+            count[1],
+            count[2],
+            domain.singles.len(),
+            tree.leaf_count()
+        ),
+    ))
+}
+
+/// Steps 1–3: the root rhomb of the hexagon fitted to the domain's points, split while
+/// crowded, then until the corner condition holds for every corner and single point.
+fn quad_tree(domain: &Domain, classes: &[Vec<Class>], guard: &Guard) -> Result<Tree, Stop> {
+    let frame = Frame::new(Hexagon::fitted(&domain.points));
+    let coords: Vec<[f64; 2]> = domain.points.iter().map(|&p| frame.locate(p)).collect();
+    let elements = crowded::DomainElements::new(domain, coords.clone());
+    let count = elements.count();
+    let mut tree = Tree::new(coords, 0).with_elements(Box::new(elements), count);
+    tree.split_crowded(guard)?;
+    let mut reach: Vec<(u32, i64)> = domain.singles.iter().map(|&p| (p, 1)).collect();
+    for (poly, classes) in domain.polygons.iter().zip(classes) {
+        reach.extend(
+            poly.corners
+                .iter()
+                .zip(classes)
+                .map(|(&p, c)| (p, c.reach())),
+        );
+    }
+    condition::ensure(&mut tree, &reach, guard)?;
+    Ok(tree)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `pslg-holes`' shape: an L with a square hole and a triangular one, each seeded.
+    fn l_with_holes() -> Pslg {
+        let loops: [&[[f64; 2]]; 3] = [
+            &[
+                [0.0, 0.0],
+                [2.0, 0.0],
+                [2.0, 0.75],
+                [0.875, 0.75],
+                [0.875, 1.625],
+                [0.0, 1.625],
+            ],
+            &[
+                [1.25, 0.1875],
+                [1.625, 0.1875],
+                [1.625, 0.5625],
+                [1.25, 0.5625],
+            ],
+            &[[0.25, 0.9375], [0.625, 1.0], [0.375, 1.375]],
+        ];
+        let mut input = Pslg::default();
+        for l in loops {
+            let base = input.points.len() as u32;
+            let n = l.len() as u32;
+            input.points.extend_from_slice(l);
+            input
+                .segments
+                .extend((0..n).map(|k| [base + k, base + (k + 1) % n]));
+        }
+        input.holes = vec![[1.4375, 0.375], [0.4167, 1.104]];
+        input
+    }
+
+    #[test]
+    fn the_l_with_holes_reads_as_one_polygon_two_holes_and_the_triangles_extra_corner() {
+        let d = input::permitted(&l_with_holes()).unwrap();
+        let outer: Vec<bool> = d.polygons.iter().map(|p| p.outer).collect();
+        assert_eq!(outer, vec![true, false, false]);
+        assert_eq!(d.points.len(), 14);
+        assert_eq!(d.polygons[2].corners.len(), 4);
+        // The L's corners: five right angles and the reflex one (270°) at (0.875, 0.75).
+        let classes = corner::classes(&d.points, &d.polygons[0]);
+        assert_eq!(classes[3], Class::Obtuse);
+        let middle = classes.iter().filter(|&&c| c == Class::Middle).count();
+        assert_eq!(middle, 5);
+        // Seen from the domain, the holes' corners are reflex: all above 150°.
+        for poly in &d.polygons[1..] {
+            let classes = corner::classes(&d.points, poly);
+            assert!(classes.iter().all(|&c| c == Class::Obtuse), "{classes:?}");
+        }
+    }
+
+    #[test]
+    fn after_steps_1_to_3_no_leaf_is_crowded_and_every_corner_condition_holds() {
+        let d = input::permitted(&l_with_holes()).unwrap();
+        let classes: Vec<Vec<Class>> = d
+            .polygons
+            .iter()
+            .map(|poly| corner::classes(&d.points, poly))
+            .collect();
+        let guard = Guard::new(crate::mesher::Budget::default());
+        let tree = quad_tree(&d, &classes, &guard).unwrap();
+        assert!(tree.leaves().into_iter().all(|c| !tree.crowded(c)));
+        for (poly, classes) in d.polygons.iter().zip(&classes) {
+            for (&p, class) in poly.corners.iter().zip(classes) {
+                assert!(condition::holds(&tree, p, class.reach()), "corner {p}");
+            }
+        }
+        // The square hole is 0.1875 from the L's bottom: its corners need rhombs well below
+        // that, and the tree is not a uniform one of that size.
+        let finest = tree.leaves().iter().map(|c| c.level).max().unwrap();
+        let coarsest = tree.leaves().iter().map(|c| c.level).min().unwrap();
+        assert!(finest >= coarsest + 2, "{coarsest}..{finest}");
+    }
+
+    #[test]
+    fn a_budget_stops_the_quad_tree_with_its_reason() {
+        let params = Params {
+            budget: crate::mesher::Budget {
+                max_steps: Some(3),
+                ..Default::default()
+            },
+            ..Params::default()
+        };
+        let err = mesh(&l_with_holes(), &params).unwrap_err();
+        assert!(err.to_string().contains("step budget of 3"), "{err}");
+    }
+}

@@ -61,7 +61,8 @@ impl DomainElements {
         (self.coords.len() + self.sides.len()) as u32
     }
 
-    fn side(&self, e: u32) -> Option<[u32; 2]> {
+    /// The domain points side `e` joins, or `None` when element `e` is a point.
+    pub fn side(&self, e: u32) -> Option<[u32; 2]> {
         (e as usize)
             .checked_sub(self.coords.len())
             .map(|k| self.sides[k])

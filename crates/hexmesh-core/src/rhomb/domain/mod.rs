@@ -18,6 +18,7 @@ mod corner;
 mod crowded;
 mod exact;
 mod input;
+mod near;
 
 use crate::error::{Error, Result};
 use crate::geom::Hexagon;
@@ -40,7 +41,7 @@ pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
         .map(|poly| corner::classes(&domain.points, poly))
         .collect();
     let guard = Guard::new(params.budget);
-    let tree = match quad_tree(&domain, &classes, &guard) {
+    let (tree, frame) = match quad_tree(&domain, &classes, &guard) {
         Ok(tree) => tree,
         Err(Stop::Budget(reason)) => return Err(Error::mesher(super::NAME, reason)),
         Err(Stop::Depth) => {
@@ -62,25 +63,114 @@ pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
             Class::Obtuse => 2,
         }] += 1;
     }
+    let near = near_corners(&domain, &tree, &frame);
     Err(Error::mesher(
         super::NAME,
         format!(
             "the input is a permitted polygonal domain ({} polygons; corners: {} of at most \
-             60°, {} of 60°-150°, {} above 150°; {} single points; {} rhombs after steps 1-3), \
-             but rhomb does not mesh domains yet (paper 001 Sec. 4 steps 4-16)",
+             60°, {} of 60°-150°, {} above 150°; {} single points; {} rhombs after steps 1-3; \
+             tree corners in the domain near the boundary: {} to stay and {} to move by Sec. \
+             5.2 case 1, {} at rhombs of different sizes), but rhomb does not mesh domains \
+             yet (paper 001 Sec. 4 steps 4-16)",
             domain.polygons.len(),
             count[0],
             count[1],
             count[2],
             domain.singles.len(),
-            tree.leaf_count()
+            tree.leaf_count(),
+            near.stay,
+            near.moved,
+            near.unequal
         ),
     ))
 }
 
+/// How the tree corners inside the domain whose hexagon the boundary crosses divide among
+/// Sec. 5.2's cases.
+#[derive(Debug, Default, PartialEq)]
+struct NearCounts {
+    /// Corners of four equal rhombs, the boundary at least half a side away.
+    stay: usize,
+    /// Corners of four equal rhombs moved by Sec. 5.2 case 1.
+    moved: usize,
+    /// Corners of rhombs of different sizes (Sec. 5.1, 5.2 case 2).
+    unequal: usize,
+}
+
+/// Sorts every tree corner inside the domain whose hexagon (of its leaf's side) the boundary
+/// crosses into `NearCounts`. A corner is inside when an odd number of polygons hold it
+/// (after `input::permitted`, regions alternate between domain and not, the outside first).
+fn near_corners(domain: &Domain, tree: &Tree, frame: &Frame) -> NearCounts {
+    use super::lattice::{key, Cell};
+    use super::tree::Cover;
+    let count = domain.points.len();
+    let rings: Vec<Vec<crate::geom::Point>> = domain
+        .polygons
+        .iter()
+        .map(|poly| {
+            poly.corners
+                .iter()
+                .map(|&c| domain.points[c as usize])
+                .collect()
+        })
+        .collect();
+    let elements = crowded::DomainElements::new(domain, vec![[0.0; 2]; count]);
+    let mut seen = super::tree::KeySet::default();
+    let mut out = NearCounts::default();
+    for c in tree.leaves() {
+        let boundary: Vec<[crate::geom::Point; 2]> = tree
+            .window(c)
+            .iter()
+            .filter_map(|&e| elements.side(e))
+            .map(|s| s.map(|v| domain.points[v as usize]))
+            .collect();
+        if boundary.is_empty() {
+            continue;
+        }
+        for (i, j) in [
+            (c.i, c.j),
+            (c.i + 1, c.j),
+            (c.i, c.j + 1),
+            (c.i + 1, c.j + 1),
+        ] {
+            if !seen.insert(key(c.level, i, j)) {
+                continue;
+            }
+            let at = |(di, dj): (i64, i64)| frame.point(key(c.level, i + di, j + dj));
+            let p = at((0, 0));
+            let hexagon = near::DIRECTIONS.map(at);
+            let scale = crate::geom::exponent(crate::geom::dist(p, hexagon[0]));
+            let Some(nearest) = near::nearest(p, &hexagon, &boundary, scale) else {
+                continue;
+            };
+            if rings.iter().filter(|r| input::inside(p, r)).count() % 2 == 0 {
+                continue;
+            }
+            let equal = [(0, 0), (-1, 0), (0, -1), (-1, -1)]
+                .iter()
+                .all(|&(di, dj)| {
+                    let cell = Cell::new(c.level, i + di, j + dj);
+                    tree.cover(cell) == Cover::Leaf(cell)
+                });
+            if !equal {
+                out.unequal += 1;
+            } else if near::moved(c.level, i, j, nearest) == (c.level + 1, 2 * i, 2 * j) {
+                out.stay += 1;
+            } else {
+                out.moved += 1;
+            }
+        }
+    }
+    out
+}
+
 /// Steps 1–3: the root rhomb of the hexagon fitted to the domain's points, split while
 /// crowded, then until the corner condition holds for every corner and single point.
-fn quad_tree(domain: &Domain, classes: &[Vec<Class>], guard: &Guard) -> Result<Tree, Stop> {
+fn quad_tree(
+    domain: &Domain,
+    classes: &[Vec<Class>],
+    guard: &Guard,
+) -> Result<(Tree, Frame), Stop> {
     let frame = Frame::new(Hexagon::fitted(&domain.points));
     let coords: Vec<[f64; 2]> = domain.points.iter().map(|&p| frame.locate(p)).collect();
     let elements = crowded::DomainElements::new(domain, coords.clone());
@@ -97,7 +187,7 @@ fn quad_tree(domain: &Domain, classes: &[Vec<Class>], guard: &Guard) -> Result<T
         );
     }
     condition::ensure(&mut tree, &reach, guard)?;
-    Ok(tree)
+    Ok((tree, frame))
 }
 
 #[cfg(test)]
@@ -164,7 +254,7 @@ mod tests {
             .map(|poly| corner::classes(&d.points, poly))
             .collect();
         let guard = Guard::new(crate::mesher::Budget::default());
-        let tree = quad_tree(&d, &classes, &guard).unwrap();
+        let (tree, frame) = quad_tree(&d, &classes, &guard).unwrap();
         assert!(tree.leaves().into_iter().all(|c| !tree.crowded(c)));
         for (poly, classes) in d.polygons.iter().zip(&classes) {
             for (&p, class) in poly.corners.iter().zip(classes) {
@@ -176,6 +266,13 @@ mod tests {
         let finest = tree.leaves().iter().map(|c| c.level).max().unwrap();
         let coarsest = tree.leaves().iter().map(|c| c.level).min().unwrap();
         assert!(finest >= coarsest + 2, "{coarsest}..{finest}");
+        // Along the boundary, corners of all three kinds occur: the L's long sides are met
+        // at every distance by the rows, and the rhombs grade towards the holes.
+        let near = near_corners(&d, &tree, &frame);
+        assert!(
+            near.stay > 0 && near.moved > 0 && near.unequal > 0,
+            "{near:?}"
+        );
     }
 
     #[test]

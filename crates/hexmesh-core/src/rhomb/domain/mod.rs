@@ -5,7 +5,10 @@
 //! - `corner` (Sec. 3, corner condition; Sec. 5.6–5.8): each corner's class by its angle,
 //!   decided with exact signs (`exact`);
 //! - `crowded` (Sec. 3, step 2): the elements and the 7/5 windows;
-//! - `condition` (step 3): the corner condition.
+//! - `condition` (step 3): the corner condition;
+//! - `near` (Sec. 5 opening, 5.2 case 1): the tree corners near the boundary and their moves;
+//! - `angles` (tests only): every angle of a domain mesh, exempting only the angles at input
+//!   vertices between two input segments, against the bounds with the rounding allowance.
 //!
 //! Steps 1–3 run (`quad_tree`). Not yet implemented, so `Rhomb::supports_segments` stays
 //! false and a permitted domain is refused after its quad-tree is built: centring (steps 4–5,
@@ -13,6 +16,8 @@
 //! Sec. 5.1), moving corners and border-boxes (steps 8, 11, Sec. 5.2–5.3), deleting the
 //! rhombs outside (step 9), and the triangulations of steps 10 and 12–16 (Sec. 5.5–5.8).
 
+#[cfg(test)]
+mod angles;
 mod condition;
 mod corner;
 mod crowded;

@@ -280,6 +280,86 @@ mod tests {
         );
     }
 
+    /// A star polygon around the origin: corner k at angle 2π(k + jitter/5)/n and radius
+    /// `radii[k]`, counter-clockwise, or clockwise when `reverse`. Neighbouring corners are at
+    /// most 1.4 steps apart: a triangle holds the origin, and seven corners at radius 0.6 or
+    /// more keep every side 0.485 or more from it.
+    fn star(radii: &[f64], jitter: &[f64], reverse: bool) -> Vec<[f64; 2]> {
+        let n = radii.len();
+        let mut ring: Vec<[f64; 2]> = (0..n)
+            .map(|k| {
+                let t = (k as f64 + 0.2 * jitter[k]) * std::f64::consts::TAU / n as f64;
+                [radii[k] * t.cos(), radii[k] * t.sin()]
+            })
+            .collect();
+        if reverse {
+            ring.reverse();
+        }
+        ring
+    }
+
+    fn signed_area(points: &[[f64; 2]], corners: &[u32]) -> f64 {
+        let n = corners.len();
+        (0..n)
+            .map(|k| {
+                let (a, b) = (
+                    points[corners[k] as usize],
+                    points[corners[(k + 1) % n] as usize],
+                );
+                a[0] * b[1] - a[1] * b[0]
+            })
+            .sum::<f64>()
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(48))]
+
+        /// A star with a star hole around the origin (seeded there) and a single point between
+        /// them, each loop given either way round: one outer polygon and one hole, each with
+        /// the domain on its left, the point single, and after steps 1-3 no leaf crowded and
+        /// every corner condition met.
+        #[test]
+        fn a_star_with_a_star_hole_reads_and_builds_its_quad_tree(
+            outer in proptest::collection::vec(0.6..1.0f64, 7..14),
+            inner in proptest::collection::vec(0.1..0.3f64, 3..9),
+            jitter in proptest::collection::vec(-1.0..1.0f64, 14),
+            turn in 0.0..std::f64::consts::TAU,
+            reverse in (proptest::bool::ANY, proptest::bool::ANY),
+        ) {
+            let mut input = Pslg::default();
+            for ring in [star(&outer, &jitter, reverse.0), star(&inner, &jitter, reverse.1)] {
+                let base = input.points.len() as u32;
+                let n = ring.len() as u32;
+                input.points.extend(ring);
+                input.segments.extend((0..n).map(|k| [base + k, base + (k + 1) % n]));
+            }
+            let single = input.points.len() as u32;
+            input.points.push([0.45 * turn.cos(), 0.45 * turn.sin()]);
+            input.holes.push([0.0, 0.0]);
+            input.check().unwrap();
+            let d = input::permitted(&input).unwrap();
+            let kinds: Vec<bool> = d.polygons.iter().map(|p| p.outer).collect();
+            proptest::prop_assert_eq!(kinds, vec![true, false]);
+            proptest::prop_assert_eq!(&d.singles, &vec![single]);
+            proptest::prop_assert!(signed_area(&d.points, &d.polygons[0].corners) > 0.0);
+            proptest::prop_assert!(signed_area(&d.points, &d.polygons[1].corners) < 0.0);
+            let classes: Vec<Vec<Class>> = d
+                .polygons
+                .iter()
+                .map(|poly| corner::classes(&d.points, poly))
+                .collect();
+            let guard = Guard::new(crate::mesher::Budget::default());
+            let (tree, _) = quad_tree(&d, &classes, &guard).unwrap();
+            proptest::prop_assert!(tree.leaves().into_iter().all(|c| !tree.crowded(c)));
+            proptest::prop_assert!(condition::holds(&tree, single, 1));
+            for (poly, classes) in d.polygons.iter().zip(&classes) {
+                for (&p, class) in poly.corners.iter().zip(classes) {
+                    proptest::prop_assert!(condition::holds(&tree, p, class.reach()));
+                }
+            }
+        }
+    }
+
     #[test]
     fn a_budget_stops_the_quad_tree_with_its_reason() {
         let params = Params {

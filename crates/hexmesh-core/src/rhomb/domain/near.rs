@@ -191,6 +191,44 @@ mod tests {
         assert!(closer.within_half);
     }
 
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(2000))]
+
+        /// Table 1, row BB_1: after the move of Sec. 5.2 case 1, a corner of four equal
+        /// rhombs lies between √3/4·l = 0.433 l and l from a straight boundary crossing its
+        /// hexagon (l_1, l_2 of the border-box). The nearest crossing is on the side most
+        /// nearly perpendicular to the boundary, within 30° of its normal, so a corner left
+        /// where it is (crossing at l/2 or more) is at least l/2 · sin 60° away, and a moved
+        /// one gains l/2 · sin 60° or more on at most l/2.
+        #[test]
+        fn a_moved_corner_lies_between_0_433_and_1_side_from_the_boundary(
+            normal in 0.0..std::f64::consts::TAU,
+            offset in 0.0..1.0f64,
+        ) {
+            let n = [normal.cos(), normal.sin()];
+            let (q, t) = ([offset * n[0], offset * n[1]], [-n[1], n[0]]);
+            let wall = [
+                [q[0] - 5.0 * t[0], q[1] - 5.0 * t[1]],
+                [q[0] + 5.0 * t[0], q[1] + 5.0 * t[1]],
+            ];
+            if let Some(near) = nearest([0.0, 0.0], &hexagon(), &[wall], 0) {
+                let (level, di, dj) = moved(0, 0, 0, near);
+                proptest::prop_assert_eq!(level, 1);
+                let h = 3f64.sqrt() / 2.0;
+                let p = [(di as f64 + dj as f64 / 2.0) / 2.0, dj as f64 * h / 2.0];
+                // Distance from the wall's line, on p's side (the origin's, away from it).
+                let d = offset - (p[0] * n[0] + p[1] * n[1]);
+                proptest::prop_assert!(
+                    d >= 3f64.sqrt() / 4.0 - 1e-12 && d <= 1.0 + 1e-12,
+                    "{:?} {} {}", near, offset, d
+                );
+            } else {
+                // No side crossed: the wall is beyond the hexagon's inradius.
+                proptest::prop_assert!(offset > 3f64.sqrt() / 2.0 - 1e-12);
+            }
+        }
+    }
+
     #[test]
     fn the_nearest_of_two_boundary_sides_decides_the_direction() {
         // A corner of the boundary: one side crosses e2's side at 0.45, the other crosses

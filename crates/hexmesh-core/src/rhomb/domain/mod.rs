@@ -10,11 +10,18 @@
 //! - `angles` (tests only): every angle of a domain mesh, exempting only the angles at input
 //!   vertices between two input segments, against the bounds with the rounding allowance.
 //!
-//! Steps 1–3 run (`quad_tree`). Not yet implemented, so `Rhomb::supports_segments` stays
-//! false and a permitted domain is refused after its quad-tree is built: centring (steps 4–5,
-//! Sec. 5.4), the cut-off acute corners (step 6, Sec. 5.6), the moving conditions (step 7,
-//! Sec. 5.1), moving corners and border-boxes (steps 8, 11, Sec. 5.2–5.3), deleting the
-//! rhombs outside (step 9), and the triangulations of steps 10 and 12–16 (Sec. 5.5–5.8).
+//! Steps 1–3 run (`quad_tree`), and the corners of four equal rhombs near the boundary are
+//! sorted by Sec. 5.2 case 1 (`near_corners`). Not yet implemented, so
+//! `Rhomb::supports_segments` stays false and a permitted domain is refused after its
+//! quad-tree is built, with its figures: centring (steps 4–5, Sec. 5.4), the cut-off acute
+//! corners (step 6, Sec. 5.6), the moving conditions (step 7, Sec. 5.1: the larger rhomb at an
+//! uneven corner is halved and a half split into four, which the tree cannot yet express),
+//! Sec. 5.2 case 2, deleting what lies outside (step 9), the border-boxes with their Steiner
+//! points and the melting of step 16 (Sec. 5.3; where to put the Steiner point the paper
+//! leaves open), and the triangulations of steps 10 and 12–15 (Sec. 5.5–5.8).
+//!
+//! Departures so far: several outer polygons in one tree (`input`); the path condition of
+//! crowdedness not tested (`crowded`). Both split at least as much as the paper.
 
 #[cfg(test)]
 mod angles;

@@ -65,13 +65,39 @@ pub fn permitted(input: &Pslg) -> Result<Domain, InputError> {
         .iter()
         .map(|l| l.corners.iter().map(|&c| points[c as usize]).collect())
         .collect();
+    // A ring can hold a point only inside its bounding box: the exact test runs on few rings.
+    let boxes: Vec<[f64; 4]> = rings
+        .iter()
+        .map(|r| {
+            r.iter().fold(
+                [
+                    f64::INFINITY,
+                    f64::INFINITY,
+                    f64::NEG_INFINITY,
+                    f64::NEG_INFINITY,
+                ],
+                |b, p| {
+                    [
+                        b[0].min(p[0]),
+                        b[1].min(p[1]),
+                        b[2].max(p[0]),
+                        b[3].max(p[1]),
+                    ]
+                },
+            )
+        })
+        .collect();
+    let holds = |b: usize, q: Point| {
+        let [x0, y0, x1, y1] = boxes[b];
+        x0 <= q[0] && q[0] <= x1 && y0 <= q[1] && q[1] <= y1 && inside(q, &rings[b])
+    };
     // The loops containing each loop (by its first corner: loops do not cross, and a corner
     // lies on no other loop), its depth and its parent, the innermost of them.
     let containing: Vec<Vec<usize>> = (0..loops.len())
         .map(|a| {
             let q = points[loops[a].corners[0] as usize];
             (0..loops.len())
-                .filter(|&b| b != a && inside(q, &rings[b]))
+                .filter(|&b| b != a && holds(b, q))
                 .collect()
         })
         .collect();
@@ -80,7 +106,7 @@ pub fn permitted(input: &Pslg) -> Result<Domain, InputError> {
     let parent: Vec<Option<usize>> = containing.iter().map(|c| innermost(c)).collect();
     let count = loops.len();
     let region_of = |q: Point| {
-        let around: Vec<usize> = (0..count).filter(|&b| inside(q, &rings[b])).collect();
+        let around: Vec<usize> = (0..count).filter(|&b| holds(b, q)).collect();
         innermost(&around)
     };
     // Region k is the inside of loop k minus its children; it is domain unless seeded.
@@ -409,6 +435,35 @@ mod tests {
         assert_eq!(poly.corners, vec![0, 1, 3, 2]);
         assert_eq!(poly.sides, vec![0, 1, 1, 2]);
         assert_eq!(orient2d(d.points[1], d.points[2], d.points[3]), 0.0);
+    }
+
+    #[test]
+    fn a_square_with_a_grid_of_seeded_square_holes_reads_every_hole() {
+        // 30 × 30 holes of side 1/2 at unit spacing inside a 32 × 32 square, and a single
+        // point between four of them.
+        let mut input = pslg(
+            &[[0.0, 0.0], [32.0, 0.0], [32.0, 32.0], [0.0, 32.0]],
+            &[&[0, 1, 2, 3]],
+            &[],
+        );
+        for gy in 0..30 {
+            for gx in 0..30 {
+                let (x, y) = (1.25 + gx as f64, 1.25 + gy as f64);
+                let base = input.points.len() as u32;
+                input
+                    .points
+                    .extend([[x, y], [x + 0.5, y], [x + 0.5, y + 0.5], [x, y + 0.5]]);
+                input
+                    .segments
+                    .extend((0..4).map(|k| [base + k, base + (k + 1) % 4]));
+                input.holes.push([x + 0.25, y + 0.25]);
+            }
+        }
+        input.points.push([2.0, 2.0]);
+        let d = permitted(&input).unwrap();
+        assert_eq!(d.polygons.len(), 901);
+        assert!(d.polygons[1..].iter().all(|p| !p.outer));
+        assert_eq!(d.singles, vec![3604]);
     }
 
     #[test]

@@ -7,6 +7,8 @@
 //! - `crowded` (Sec. 3, step 2): the elements and the 7/5 windows;
 //! - `condition` (step 3): the corner condition;
 //! - `near` (Sec. 5 opening, 5.2 case 1): the tree corners near the boundary and their moves;
+//! - `status` (groundwork of step 9): which tree corners lie in the domain, passed along the
+//!   leaves' sides in time linear in the tree;
 //! - `angles` (tests only): every angle of a domain mesh, exempting only the angles at input
 //!   vertices between two input segments, against the bounds with the rounding allowance.
 //!
@@ -31,6 +33,7 @@ mod crowded;
 mod exact;
 mod input;
 mod near;
+mod status;
 
 use crate::error::{Error, Result};
 use crate::geom::Hexagon;
@@ -109,23 +112,13 @@ struct NearCounts {
     unequal: usize,
 }
 
-/// Sorts every tree corner inside the domain whose hexagon (of its leaf's side) the boundary
-/// crosses into `NearCounts`. A corner is inside when an odd number of polygons hold it
-/// (after `input::permitted`, regions alternate between domain and not, the outside first).
+/// Sorts every tree corner inside the domain (`status`) whose hexagon (of its leaf's side)
+/// the boundary crosses into `NearCounts`.
 fn near_corners(domain: &Domain, tree: &Tree, frame: &Frame) -> NearCounts {
     use super::lattice::{key, Cell};
     use super::tree::Cover;
     let count = domain.points.len();
-    let rings: Vec<Vec<crate::geom::Point>> = domain
-        .polygons
-        .iter()
-        .map(|poly| {
-            poly.corners
-                .iter()
-                .map(|&c| domain.points[c as usize])
-                .collect()
-        })
-        .collect();
+    let status = status::statuses(domain, tree, frame);
     let elements = crowded::DomainElements::new(domain, vec![[0.0; 2]; count]);
     let mut seen = super::tree::KeySet::default();
     let mut out = NearCounts::default();
@@ -155,7 +148,7 @@ fn near_corners(domain: &Domain, tree: &Tree, frame: &Frame) -> NearCounts {
             let Some(nearest) = near::nearest(p, &hexagon, &boundary, scale) else {
                 continue;
             };
-            if rings.iter().filter(|r| input::inside(p, r)).count() % 2 == 0 {
+            if status.get(&key(c.level, i, j)) != Some(&status::Status::Inside) {
                 continue;
             }
             let equal = [(0, 0), (-1, 0), (0, -1), (-1, -1)]
@@ -280,11 +273,40 @@ mod tests {
         assert!(finest >= coarsest + 2, "{coarsest}..{finest}");
         // Along the boundary, corners of all three kinds occur: the L's long sides are met
         // at every distance by the rows, and the rhombs grade towards the holes.
+        let inside = statuses_match_parity(&d, &tree, &frame);
+        assert!(inside > 100, "{inside}");
         let near = near_corners(&d, &tree, &frame);
         assert!(
             near.stay > 0 && near.moved > 0 && near.unequal > 0,
             "{near:?}"
         );
+    }
+
+    /// Checks every leaf corner's status, passed along the tree, against the exact parity
+    /// test: inside when an odd number of polygons hold it (after `input::permitted`, regions
+    /// alternate between domain and not, the outside first). Returns how many are inside.
+    fn statuses_match_parity(d: &Domain, tree: &Tree, frame: &Frame) -> usize {
+        let rings: Vec<Vec<crate::geom::Point>> = d
+            .polygons
+            .iter()
+            .map(|poly| poly.corners.iter().map(|&c| d.points[c as usize]).collect())
+            .collect();
+        let status = status::statuses(d, tree, frame);
+        let mut inside = 0;
+        for c in tree.leaves() {
+            let k = super::super::lattice::key(c.level, c.i, c.j);
+            let p = frame.point(k);
+            let odd = rings.iter().filter(|r| input::inside(p, r)).count() % 2 == 1;
+            match status[&k] {
+                status::Status::Inside => {
+                    assert!(odd, "{c:?}");
+                    inside += 1;
+                }
+                status::Status::Outside => assert!(!odd, "{c:?}"),
+                status::Status::OnBoundary => {}
+            }
+        }
+        inside
     }
 
     /// A star polygon around the origin: corner k at angle 2π(k + jitter/5)/n and radius
@@ -323,8 +345,8 @@ mod tests {
 
         /// A star with a star hole around the origin (seeded there) and a single point between
         /// them, each loop given either way round: one outer polygon and one hole, each with
-        /// the domain on its left, the point single, and after steps 1-3 no leaf crowded and
-        /// every corner condition met.
+        /// the domain on its left, the point single, and after steps 1-3 no leaf crowded,
+        /// every corner condition met, and every tree corner's status the parity test's.
         #[test]
         fn a_star_with_a_star_hole_reads_and_builds_its_quad_tree(
             outer in proptest::collection::vec(0.6..1.0f64, 7..14),
@@ -356,7 +378,8 @@ mod tests {
                 .map(|poly| corner::classes(&d.points, poly))
                 .collect();
             let guard = Guard::new(crate::mesher::Budget::default());
-            let (tree, _) = quad_tree(&d, &classes, &guard).unwrap();
+            let (tree, frame) = quad_tree(&d, &classes, &guard).unwrap();
+            proptest::prop_assert!(statuses_match_parity(&d, &tree, &frame) > 0);
             proptest::prop_assert!(tree.leaves().into_iter().all(|c| !tree.crowded(c)));
             proptest::prop_assert!(condition::holds(&tree, single, 1));
             for (poly, classes) in d.polygons.iter().zip(&classes) {

@@ -12,6 +12,11 @@
 //! The parity along uw is then the difference of the statuses of u and w for the pushed
 //! boundary, which are theirs, since u and w are not on the boundary: a corner on a boundary
 //! side (or at a boundary vertex) is `OnBoundary` and passes nothing on.
+//!
+//! Open: a corner cut off from the start by `OnBoundary` corners (the boundary running along
+//! tree edges all round a region, which needs input corners at lattice positions bit for bit)
+//! gets no status, and callers count it as not inside; a parity test over the polygons would
+//! settle it.
 
 use super::crowded::DomainElements;
 use super::input::Domain;

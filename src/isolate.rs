@@ -15,6 +15,7 @@
 //!          | 1u8 str:mesher str:message
 //!          | 2u8 u64:first u64:second f64:distance f64:needed f64:allowed  (InputError::Rounding)
 //!          | 3u8 u64:index f64:distance                                    (InputError::NearBoundary)
+//!          | 4u8 u8:kind u64:a u64:b u64:c      (a refused domain: `encode_domain_refusal`)
 //! opt<T>   = 0u8 | 1u8 T;  str = u32:len utf-8 bytes
 //!
 //! The answer is a trailer at the very end of stdout, and the child flushes C's stdio
@@ -276,6 +277,14 @@ pub fn child_main() -> ExitCode {
             payload.push(3);
             put_u64(&mut payload, index as u64);
             put_f64(&mut payload, distance);
+        }
+        Err(Error::Input { problem, .. }) if domain_refusal(&problem).is_some() => {
+            let (kind, [a, b, c]) = domain_refusal(&problem).unwrap_or_default();
+            payload.push(4);
+            payload.push(kind);
+            for v in [a, b, c] {
+                put_u64(&mut payload, v as u64);
+            }
         }
         Err(e) => {
             let (mesher, message) = match e {
@@ -643,6 +652,42 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     Ok((name, input, params))
 }
 
+/// A mesher's refusal of a PSLG that is not a polygonal domain (`rhomb`, paper 001 Sec. 3)
+/// as a kind byte and up to three indices, so that the parent can name the file's lines.
+fn domain_refusal(problem: &InputError) -> Option<(u8, [usize; 3])> {
+    match *problem {
+        InputError::DanglingSegment { segment, vertex } => Some((0, [segment, vertex, 0])),
+        InputError::BranchingSegment {
+            segment,
+            vertex,
+            count,
+        } => Some((1, [segment, vertex, count])),
+        InputError::SegmentInsideDomain { segment } => Some((2, [segment, 0, 0])),
+        InputError::SegmentOutsideDomain { segment } => Some((3, [segment, 0, 0])),
+        InputError::PointOutsideDomain { point } => Some((4, [point, 0, 0])),
+        _ => None,
+    }
+}
+
+/// The inverse of `domain_refusal`.
+fn domain_problem(kind: u8, [a, b, c]: [usize; 3]) -> Option<InputError> {
+    Some(match kind {
+        0 => InputError::DanglingSegment {
+            segment: a,
+            vertex: b,
+        },
+        1 => InputError::BranchingSegment {
+            segment: a,
+            vertex: b,
+            count: c,
+        },
+        2 => InputError::SegmentInsideDomain { segment: a },
+        3 => InputError::SegmentOutsideDomain { segment: a },
+        4 => InputError::PointOutsideDomain { point: a },
+        _ => return None,
+    })
+}
+
 fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
     let mut r = Reader {
         buf,
@@ -681,6 +726,18 @@ fn decode_answer(buf: &[u8], mesher: &str) -> Result<Isolated> {
             let distance = r.f64()?;
             r.finish()?;
             return Err(Error::input(InputError::NearBoundary { index, distance }));
+        }
+        4 => {
+            let kind = r.u8()?;
+            let mut v = [0usize; 3];
+            for slot in &mut v {
+                *slot = usize::try_from(r.u64()?).unwrap_or(usize::MAX);
+            }
+            r.finish()?;
+            return match domain_problem(kind, v) {
+                Some(problem) => Err(Error::input(problem)),
+                None => Err(r.bad(&format!("domain refusal kind {kind}"))),
+            };
         }
         b => return Err(r.bad(&format!("status byte {b}"))),
     }
@@ -804,6 +861,30 @@ mod tests {
         };
         assert_eq!(bits(&back.points), bits(&input.points));
         assert_eq!(back.hexagon, input.hexagon);
+    }
+
+    #[test]
+    fn every_domain_refusal_round_trips() {
+        let problems = [
+            InputError::DanglingSegment {
+                segment: 4,
+                vertex: 5,
+            },
+            InputError::BranchingSegment {
+                segment: 7,
+                vertex: 2,
+                count: 3,
+            },
+            InputError::SegmentInsideDomain { segment: 9 },
+            InputError::SegmentOutsideDomain { segment: 1 },
+            InputError::PointOutsideDomain { point: 12 },
+        ];
+        for problem in problems {
+            let (kind, v) = domain_refusal(&problem).unwrap();
+            assert_eq!(domain_problem(kind, v), Some(problem));
+        }
+        assert_eq!(domain_refusal(&InputError::Empty), None);
+        assert_eq!(domain_problem(5, [0; 3]), None);
     }
 
     #[test]

@@ -174,15 +174,38 @@ fn a_point_at_a_centroid_is_centred_by_the_melted_patch() {
 }
 
 #[test]
-fn segments_are_refused_with_a_clear_error() {
+fn a_permitted_domain_is_read_and_refused_as_not_yet_meshed() {
     let input = Pslg {
         points: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
         segments: vec![[0, 1], [1, 2], [2, 0]],
         ..Pslg::default()
     };
     let err = Rhomb.mesh(&input, &Params::default()).unwrap_err();
-    assert!(err.to_string().contains("point sets only"), "{err}");
+    // The triangle got its extra corner: two 45° corners, a right angle and a flat one.
+    let text = err.to_string();
+    assert!(text.contains("does not mesh domains yet"), "{err}");
+    assert!(
+        text.contains("corners: 2 of at most 60°, 1 of 60°-150°, 1 above 150°"),
+        "{err}"
+    );
     assert!(!Rhomb.supports_segments());
+}
+
+#[test]
+fn a_segment_inside_the_domain_is_refused_naming_it() {
+    let mut input = Pslg {
+        points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+        segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+        ..Pslg::default()
+    };
+    input.points.extend([[0.25, 0.375], [0.75, 0.625]]);
+    input.segments.push([4, 5]);
+    let err = Rhomb.mesh(&input, &Params::default()).unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "bad input: segment 4 ends at point 4, which no other segment continues: the boundary \
+         of a polygonal domain has no free end"
+    );
 }
 
 #[test]

@@ -90,6 +90,41 @@ pub enum InputError {
         /// The largest allowance permitted, in degrees.
         allowed: f64,
     },
+    /// Segment `segment` ends at `vertex`, which no other segment continues: the boundary of
+    /// a polygonal domain (paper 001 Sec. 3: closed polygons) has no free end.
+    DanglingSegment {
+        /// The segment's 0-based index.
+        segment: usize,
+        /// Its free end, a 0-based point index.
+        vertex: usize,
+    },
+    /// `count` segments meet at `vertex` (0-based), `segment` being the third of them by
+    /// index: the polygons of a polygonal domain neither branch nor touch one another.
+    BranchingSegment {
+        /// The 0-based index of the third segment at the vertex.
+        segment: usize,
+        /// The vertex, a 0-based point index.
+        vertex: usize,
+        /// How many segments meet there.
+        count: usize,
+    },
+    /// Segment `segment` has the domain on both sides (a slit, or a polygon with no hole seed
+    /// inside it drawn within the domain); a mesher of polygonal domains refuses it.
+    SegmentInsideDomain {
+        /// The 0-based index of the polygon's first segment.
+        segment: usize,
+    },
+    /// Segment `segment` has no domain on either side (a polygon inside a hole, or a polygon
+    /// emptied by a hole seed with nothing meshed around it).
+    SegmentOutsideDomain {
+        /// The 0-based index of the polygon's first segment.
+        segment: usize,
+    },
+    /// Point `point` (0-based), on no segment, lies outside the domain or in a hole.
+    PointOutsideDomain {
+        /// The point's 0-based index.
+        point: usize,
+    },
     /// Point `index` (0-based) lies only `distance` inside the bounding hexagon's edge, too
     /// close for the mesher's lattice to put triangles between them in f64.
     NearBoundary {
@@ -169,6 +204,37 @@ impl InputError {
                 n(index),
                 point[0],
                 point[1]
+            ),
+            InputError::DanglingSegment { segment, vertex } => format!(
+                "segment {} ends at point {}, which no other segment continues: the boundary \
+                 of a polygonal domain has no free end",
+                n(segment),
+                n(vertex)
+            ),
+            InputError::BranchingSegment {
+                segment,
+                vertex,
+                count,
+            } => format!(
+                "segment {} is the third of {count} segments at point {}: the polygons of a \
+                 polygonal domain neither branch nor touch",
+                n(segment),
+                n(vertex)
+            ),
+            InputError::SegmentInsideDomain { segment } => format!(
+                "segment {} has the domain on both sides: a mesher of polygonal domains \
+                 (polygons with holes) takes no segment inside the domain",
+                n(segment)
+            ),
+            InputError::SegmentOutsideDomain { segment } => format!(
+                "segment {} has no domain on either side (a polygon inside a hole, or \
+                 emptied by a hole seed)",
+                n(segment)
+            ),
+            InputError::PointOutsideDomain { point } => format!(
+                "point {} lies on no segment and outside the domain (outside every polygon \
+                 or in a hole)",
+                n(point)
             ),
             InputError::Range { detail } => detail.clone(),
             InputError::NearBoundary { index, distance } => format!(

@@ -241,7 +241,10 @@ impl Source {
             },
             InputError::NonFinite { index, .. }
             | InputError::OutsideHexagon { index, .. }
-            | InputError::NearBoundary { index, .. } => at(&self.node_path, self.point_line(index)),
+            | InputError::NearBoundary { index, .. }
+            | InputError::PointOutsideDomain { point: index } => {
+                at(&self.node_path, self.point_line(index))
+            }
             InputError::Duplicate {
                 first,
                 second,
@@ -263,7 +266,11 @@ impl Source {
             }
             InputError::MissingVertex { segment, .. }
             | InputError::DegenerateSegment { segment }
-            | InputError::PointOnSegment { segment, .. } => {
+            | InputError::PointOnSegment { segment, .. }
+            | InputError::DanglingSegment { segment, .. }
+            | InputError::BranchingSegment { segment, .. }
+            | InputError::SegmentInsideDomain { segment }
+            | InputError::SegmentOutsideDomain { segment } => {
                 at(&self.poly_path, self.segment_line(segment))
             }
             // The later segment is where the conflict shows.

@@ -16,6 +16,7 @@
 //! without the input points (`complete == false`), which still meets the angle bounds.
 
 mod centring;
+mod domain;
 #[cfg(test)]
 mod fixtures;
 mod lattice;
@@ -74,14 +75,10 @@ impl Mesher for Rhomb {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         let start = Instant::now();
-        if input.has_segments() {
-            return Err(Error::mesher(
-                NAME,
-                "rhomb meshes point sets only; PSLG support (paper 001 Sec. 5.1-5.8) is not \
-                 implemented",
-            ));
-        }
         input.validate_input()?;
+        if input.has_segments() {
+            return domain::mesh(input, params);
+        }
         let hex = input.bounding_hexagon();
         if !(hex.circumradius.is_finite() && hex.circumradius > 0.0) {
             return Err(Error::mesher(

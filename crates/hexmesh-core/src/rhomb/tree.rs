@@ -114,6 +114,17 @@ impl Hasher for KeyHasher {
 pub type KeyMap<K, V> = HashMap<K, V, BuildHasherDefault<KeyHasher>>;
 pub type KeySet<K> = HashSet<K, BuildHasherDefault<KeyHasher>>;
 
+/// The elements of an input other than a point set (a polygonal domain: `domain::crowded`):
+/// which of them a leaf's window list keeps, and when that list makes the leaf crowded. A
+/// point set has the built-in rule (its points in the 5×-window, two or more).
+pub trait Elements {
+    /// Whether element `e` meets the largest window the rule looks at around `cell`. A
+    /// child's list is its parent's filtered by this, so it must shrink with the window.
+    fn meets(&self, e: u32, cell: Cell) -> bool;
+    /// Whether `cell`, whose list is `list` (the elements meeting its window), is crowded.
+    fn crowded(&self, cell: Cell, list: &[u32]) -> bool;
+}
+
 /// The quad-tree: its leaves, each with the input points inside its crowdedness window.
 pub struct Tree {
     leaves: KeyMap<Cell, Vec<u32>>,
@@ -129,6 +140,8 @@ pub struct Tree {
     area_level: u8,
     /// Per point, the boundary lattice vertex it is bit for bit (`Frame::boundary_vertex`).
     pins: Vec<Option<(u8, i64, i64)>>,
+    /// The elements and crowdedness rule of a domain; `None` for a point set.
+    elements: Option<Box<dyn Elements>>,
 }
 
 /// The level-k cell index of a root-normalised coordinate, clamped into the root.
@@ -151,7 +164,16 @@ impl Tree {
             fresh: vec![Cell::ROOT],
             area_level,
             pins: Vec::new(),
+            elements: None,
         }
+    }
+
+    /// The tree of a domain: the root's list holds elements `0..count`, and `elements` says
+    /// which meet a window and when a leaf is crowded.
+    pub fn with_elements(mut self, elements: Box<dyn Elements>, count: u32) -> Tree {
+        self.leaves.insert(Cell::ROOT, (0..count).collect());
+        self.elements = Some(elements);
+        self
     }
 
     /// Marks the points that are boundary lattice vertices bit for bit (`Frame::
@@ -171,6 +193,11 @@ impl Tree {
         let mut cells: Vec<Cell> = self.leaves.keys().copied().collect();
         cells.sort_unstable();
         cells
+    }
+
+    /// The window list of leaf `c` (empty for a cell that is not a leaf).
+    pub fn window(&self, c: Cell) -> &[u32] {
+        self.leaves.get(&c).map_or(&[], Vec::as_slice)
     }
 
     pub fn leaf_count(&self) -> usize {
@@ -291,6 +318,9 @@ impl Tree {
                 .iter()
                 .copied()
                 .filter(|&p| {
+                    if let Some(elements) = &self.elements {
+                        return elements.meets(p, child);
+                    }
                     let [s, t] = self.coords[p as usize];
                     let n = 1i64 << child.level;
                     let (i, j) = ((s * n as f64).floor() as i64, (t * n as f64).floor() as i64);
@@ -318,11 +348,15 @@ impl Tree {
     /// small for f64 at the coordinates (fixture `a_point_near_the_fitted_edge_is_centred_at_
     /// the_depth_its_patch_needs`). Earlier the window also counted the rhombs between a point
     /// and the edge (fixture `a_point_near_the_fitted_edge_away_from_the_origin_is_meshed`).
-    fn crowded(&self, c: Cell) -> bool {
+    pub fn crowded(&self, c: Cell) -> bool {
         if c.level < MIN_LEVEL.max(self.area_level) {
             return true;
         }
-        self.leaves.get(&c).is_some_and(|window| window.len() >= 2)
+        match (&self.elements, self.leaves.get(&c)) {
+            (Some(elements), Some(window)) => elements.crowded(c, window),
+            (None, Some(window)) => window.len() >= 2,
+            (_, None) => false,
+        }
     }
 
     /// Sec. 4 step 2: split while a crowded leaf exists. Children of an uncrowded rhomb are

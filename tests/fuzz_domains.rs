@@ -539,3 +539,54 @@ fn refusals_are_counted_by_reason_and_budget_stops_and_panics_fail() {
         assert!(message.contains(expected), "{fault}: {message}");
     }
 }
+
+fn hexmesh_cli(args: &[&str]) -> (Option<i32>, String) {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_hexmesh"))
+        .args(args)
+        .output()
+        .expect("hexmesh runs");
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code(), text)
+}
+
+#[test]
+fn the_command_line_runs_a_domain_campaign_and_refuses_a_mesher_without_segments() {
+    let dir = temp_dir("cli");
+    let (code, text) = hexmesh_cli(&[
+        "fuzz",
+        "--domains",
+        "--mesher",
+        "saalfeld",
+        "--cases",
+        "16",
+        "--seed",
+        "3",
+        "--out",
+        dir.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(code, Some(0), "{text}");
+    assert!(
+        text.contains("fuzz --domains saalfeld: 16 cases (seed 3), 16 passed, 0 refused, 0 failed"),
+        "{text}"
+    );
+    assert!(
+        text.contains("refusals by reason: none") && text.contains("thin-slit"),
+        "{text}"
+    );
+    // A campaign that passes writes nothing, not even the directory.
+    assert!(!dir.exists());
+    let (code, text) = hexmesh_cli(&[
+        "fuzz",
+        "--domains",
+        "--mesher",
+        "hex-simple",
+        "--cases",
+        "1",
+    ]);
+    assert_eq!(code, Some(2), "{text}");
+    assert!(
+        text.contains("does not keep segments") && text.contains("lsb"),
+        "{text}"
+    );
+}

@@ -489,6 +489,8 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
     )
     .expect("runs");
     assert_eq!((s.failures, s.passed), (9, 0), "{s}");
+    let reasons: Vec<&String> = s.failure_reasons.keys().collect();
+    assert_eq!(reasons, ["verdict: validity violations"], "{s}");
     let first = s.first_failure.as_ref().expect("a first failure");
     assert!(first.message.contains("verdict"), "{}", first.message);
     for (case, family, path) in &s.failed {
@@ -530,6 +532,12 @@ fn refusals_are_counted_by_reason_and_budget_stops_and_panics_fail() {
         let s = domain_campaign_with(&Faulty(fault), 3, 1, None, &Runner::InProcess, |_| {})
             .expect("runs");
         assert_eq!((s.failures, s.refused), (3, 0), "{fault}: {s}");
+        let reason = if fault == "panics" {
+            "panic"
+        } else {
+            "stopped early: budget"
+        };
+        assert_eq!(s.failure_reasons[reason].count, 3, "{fault}: {s}");
         let message = &s.first_failure.as_ref().expect("failed").message;
         let expected = if fault == "panics" {
             "panicked: a fault of the test"

@@ -102,9 +102,9 @@ fn promised(mesher: &dyn Mesher) -> Result<Bounds> {
     }
 }
 
-/// Refusals of one reason: the `InputError` variant, how many, and the first.
+/// The refusals or failures of one reason: how many, and the first (its message on one line).
 #[derive(Debug, Clone, PartialEq)]
-pub struct Refusals {
+pub struct Tally {
     pub count: u64,
     pub first_case: u64,
     pub first_family: &'static str,
@@ -121,7 +121,9 @@ pub struct DomainSummary {
     pub refused: u64,
     pub failures: u64,
     /// Refusals by reason (the `InputError` variant's name), in name order.
-    pub refusals: BTreeMap<String, Refusals>,
+    pub refusals: BTreeMap<String, Tally>,
+    /// Failures by reason (`Failure::reason`), in name order.
+    pub failure_reasons: BTreeMap<String, Tally>,
     /// Cases where the generator gave up and meshed `fallback_domain` (none expected).
     pub fallbacks: u64,
     /// Over the meshes that passed: the smallest and largest angle, in degrees; of the
@@ -147,7 +149,44 @@ pub struct DomainSummary {
 enum Outcome {
     Passed(Box<quality::Verdict>),
     Refused(InputError, String),
-    Failed(String),
+    Failed(Failure),
+}
+
+/// Why a case failed: a short key the summary counts failures by, and the whole message.
+struct Failure {
+    /// "verdict: " and the checks that failed, "stopped early: budget" or "stopped early:
+    /// child timed out", "mesher error", "panic" or "verdict panic".
+    reason: String,
+    /// The first line tells what failed; a verdict's table follows.
+    message: String,
+}
+
+/// The outcome of a case that failed for `reason`.
+fn failed(reason: &str, message: String) -> Outcome {
+    Outcome::Failed(Failure {
+        reason: reason.to_string(),
+        message,
+    })
+}
+
+/// Adds one case of `reason` to `tally`.
+fn count(
+    tally: &mut BTreeMap<String, Tally>,
+    reason: String,
+    case: u64,
+    family: &'static str,
+    message: &str,
+) {
+    let first_message = message.lines().next().unwrap_or_default().to_string();
+    tally
+        .entry(reason)
+        .and_modify(|r| r.count += 1)
+        .or_insert(Tally {
+            count: 1,
+            first_case: case,
+            first_family: family,
+            first_message,
+        });
 }
 
 fn min_opt(a: Option<f64>, b: Option<f64>) -> Option<f64> {
@@ -219,6 +258,7 @@ pub fn domain_campaign_with(
         refused: 0,
         failures: 0,
         refusals: BTreeMap::new(),
+        failure_reasons: BTreeMap::new(),
         fallbacks: 0,
         min_angle: None,
         max_angle: None,
@@ -277,18 +317,16 @@ pub fn domain_campaign_with(
             Outcome::Refused(problem, message) => {
                 summary.refused += 1;
                 summary.families[fam].refused += 1;
-                summary
-                    .refusals
-                    .entry(refusal_reason(&problem))
-                    .and_modify(|r| r.count += 1)
-                    .or_insert(Refusals {
-                        count: 1,
-                        first_case: case,
-                        first_family: family,
-                        first_message: message,
-                    });
+                count(
+                    &mut summary.refusals,
+                    refusal_reason(&problem),
+                    case,
+                    family,
+                    &message,
+                );
             }
-            Outcome::Failed(message) => {
+            Outcome::Failed(Failure { reason, message }) => {
+                count(&mut summary.failure_reasons, reason, case, family, &message);
                 summary.failures += 1;
                 summary.families[fam].failures += 1;
                 let path = match out {
@@ -343,7 +381,10 @@ fn run_case(
         Runner::InProcess => match catch_unwind(AssertUnwindSafe(|| mesher.mesh(input, params))) {
             Ok(r) => r,
             Err(payload) => {
-                return Outcome::Failed(format!("panicked: {}", panic_text(payload.as_ref())))
+                return failed(
+                    "panic",
+                    format!("panicked: {}", panic_text(payload.as_ref())),
+                )
             }
         },
         Runner::Isolated { exe } => {
@@ -357,23 +398,45 @@ fn run_case(
             let message = problem.describe(0);
             return Outcome::Refused(problem, message);
         }
-        Err(e) => return Outcome::Failed(e.to_string()),
+        Err(e) => return failed("mesher error", e.to_string()),
     };
     if !run.complete {
-        return Outcome::Failed(format!(
-            "stopped early by its budget: {}",
-            run.stop_reason.as_deref().unwrap_or("no reason given")
-        ));
+        let why = run.stop_reason.as_deref().unwrap_or("no reason given");
+        // `isolate::run_isolated` says so when it killed the child.
+        let reason = if why.starts_with("timeout after") {
+            "stopped early: child timed out"
+        } else {
+            "stopped early: budget"
+        };
+        return failed(reason, format!("stopped early: {why}"));
     }
     match catch_unwind(AssertUnwindSafe(|| {
         quality::verdict(&run.mesh, Some(input), Some(bounds))
     })) {
         Ok(v) if v.passed() => Outcome::Passed(Box::new(v)),
-        Ok(v) => Outcome::Failed(format!("quality verdict failed:\n{v}")),
-        Err(payload) => Outcome::Failed(format!(
-            "the verdict panicked: {}",
-            panic_text(payload.as_ref())
-        )),
+        Ok(v) => {
+            let checks: Vec<&quality::Check> = v
+                .checks
+                .iter()
+                .filter(|c| c.status == quality::Status::Fail)
+                .collect();
+            let names: Vec<&str> = checks.iter().map(|c| c.what.as_str()).collect();
+            let figures: Vec<String> = checks
+                .iter()
+                .map(|c| match c.value {
+                    Some(x) => format!("{} = {x} ({} {})", c.what, c.relation, c.limit),
+                    None => c.what.clone(),
+                })
+                .collect();
+            failed(
+                &format!("verdict: {}", names.join(", ")),
+                format!("quality verdict failed: {}\n{v}", figures.join("; ")),
+            )
+        }
+        Err(payload) => failed(
+            "verdict panic",
+            format!("the verdict panicked: {}", panic_text(payload.as_ref())),
+        ),
     }
 }
 
@@ -421,6 +484,16 @@ impl fmt::Display for DomainSummary {
         } else {
             writeln!(f, "refusals by reason:")?;
             for (reason, r) in &self.refusals {
+                writeln!(
+                    f,
+                    "  {reason:<16} {:>7} (first: case {} ({}): {})",
+                    r.count, r.first_case, r.first_family, r.first_message
+                )?;
+            }
+        }
+        if !self.failure_reasons.is_empty() {
+            writeln!(f, "failures by reason:")?;
+            for (reason, r) in &self.failure_reasons {
                 writeln!(
                     f,
                     "  {reason:<16} {:>7} (first: case {} ({}): {})",

@@ -608,7 +608,7 @@ fn fuzz_progress(cases: u64) -> Result<FuzzProgress> {
 }
 
 /// `fuzz --domains`: the campaign of `crate::fuzz_domains`, any mesher that keeps segments
-/// (Triangle and CGAL each case in a child process).
+/// (Triangle, CGAL and hex each case in a child process).
 fn fuzz_domains(args: &FuzzArgs) -> Result<ExitCode> {
     let runner = crate::fuzz_domains::runner_for(&args.mesher)?;
     let bar = fuzz_progress(args.cases)?;

@@ -14,7 +14,7 @@
 //! `MAX_REDRAWS` times.
 //!
 //! Each case is meshed under a per-case `Budget` (`case_budget`), in this process (a panic is
-//! caught) or, for the meshers written in C or C++ (`runs_isolated`), in a child process
+//! caught) or, for Triangle, CGAL and `hex` (`runs_isolated`), in a child process
 //! (`isolate::run_isolated`) that is killed when it overruns. A case passes, is refused (an
 //! `Error::Input`, counted by its reason), or fails: the verdict fails against what the mesher
 //! promises (`promised`), a budget stopped it, or the mesher returned another error or
@@ -63,8 +63,9 @@ pub enum Runner {
 }
 
 /// True for the meshers that run in a child process: C and C++ code (Triangle, CGAL) can
-/// exit or abort the process, Triangle does not keep a budget, and `hex` does not keep its
-/// time budget on every domain (it ran past it without end on a case of this campaign).
+/// exit or abort the process and Triangle does not keep a budget; `hex` is slow on many
+/// domains (up to its 20 s budget), and a domain on which it missed its budget would stall
+/// the campaign, so it is bounded by the child's timeout too.
 pub fn runs_isolated(mesher: &str) -> bool {
     matches!(mesher, "triangle" | "cgal" | "cgal-conforming" | "hex")
 }

@@ -20,6 +20,7 @@ pub mod mesher {
 pub mod cli;
 pub mod datasets;
 pub mod fuzz;
+pub mod fuzz_domains;
 pub mod isolate;
 pub mod maxangle;
 pub mod reference;

@@ -46,7 +46,8 @@ enum Command {
     /// mesher fails; print the last good angle, its triangle count and time.
     MaxAngle(MaxAngleArgs),
     /// Fuzz a mesher's promises on generated point sets (uniform, clustered, collinear,
-    /// near-duplicates, scaled, translated, lattice-aligned); exit 1 on any failure.
+    /// near-duplicates, scaled, translated, lattice-aligned), or with --domains on generated
+    /// polygonal domains; exit 1 on any failure.
     Fuzz(FuzzArgs),
     /// Run every mesher on every dataset, check and time them, and regenerate the reports
     /// directory whole (results.csv, table1.md, plots, pictures, README.md).
@@ -84,9 +85,15 @@ struct ReportArgs {
 
 #[derive(Args)]
 struct FuzzArgs {
-    /// The mesher (hex-simple, hex, or any registered name).
+    /// The mesher (hex-simple, hex, or any registered name; with --domains, one that keeps
+    /// segments).
     #[arg(long)]
     mesher: String,
+    /// Generate polygonal domains instead of point sets: simple polygons, stars, sharp corners
+    /// down to 1°, holes, interior points, thin slits, short segments beside long ones, map
+    /// coordinates. Refusals are counted by reason, not failed.
+    #[arg(long)]
+    domains: bool,
     /// Number of generated cases.
     #[arg(long, default_value_t = 10_000)]
     cases: u64,
@@ -94,7 +101,7 @@ struct FuzzArgs {
     #[arg(long, default_value_t = 20_261_123)]
     seed: u64,
     /// Directory the input of each failing case is written into, as a Triangle .node file
-    /// (created if missing; at most a hundred files). Without it no files are written: the
+    /// (a .poly file with --domains; created if missing; at most a hundred files). Without it no files are written: the
     /// failing cases are only reported, and `--seed` with the case number reproduces them.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
@@ -484,7 +491,9 @@ fn max_angle(args: &MaxAngleArgs) -> Result<ExitCode> {
 }
 
 fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
-    use std::io::IsTerminal;
+    if args.domains {
+        return fuzz_domains(args);
+    }
     if !matches!(args.mesher.as_str(), "hex" | "hex-simple") {
         crate::registry::mesher(&args.mesher)?;
     }
@@ -500,38 +509,15 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
                 .into(),
         ));
     }
-    if args.cases == 0 {
-        return Err(Error::Usage(
-            "--cases must be at least 1: a campaign of no cases shows nothing".into(),
-        ));
-    }
-    let bar = if std::io::stderr().is_terminal() {
-        let bar = indicatif::ProgressBar::new(args.cases);
-        bar.set_style(
-            indicatif::ProgressStyle::with_template(
-                "{elapsed_precise} [{bar:40}] {pos}/{len} cases, eta {eta}",
-            )
-            .map_err(|e| Error::Usage(format!("progress bar: {e}")))?,
-        );
-        Some(bar)
-    } else {
-        None
-    };
-    let step = (args.cases / 20).max(1);
+    let bar = fuzz_progress(args.cases)?;
     let summary = crate::fuzz::fuzz_campaign(
         &args.mesher,
         args.cases,
         args.seed,
         args.out.as_deref(),
-        |done| match &bar {
-            Some(bar) => bar.set_position(done),
-            None if done % step == 0 => eprintln!("{done}/{} cases", args.cases),
-            None => {}
-        },
+        |done| bar.set(done),
     );
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
-    }
+    bar.finish();
     println!(
         "fuzz {}: {} cases (seed {}), {} refused as too close for f64 at their coordinates, {} failed",
         summary.mesher, summary.cases, summary.seed, summary.refused, summary.failures
@@ -578,6 +564,76 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
             }
         }
     }
+    Ok(if summary.failures == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+/// A campaign's progress: a bar on a terminal, otherwise a line every twentieth of the cases.
+struct FuzzProgress {
+    bar: Option<indicatif::ProgressBar>,
+    cases: u64,
+}
+
+impl FuzzProgress {
+    fn set(&self, done: u64) {
+        match &self.bar {
+            Some(bar) => bar.set_position(done),
+            None if done % (self.cases / 20).max(1) == 0 => {
+                eprintln!("{done}/{} cases", self.cases)
+            }
+            None => {}
+        }
+    }
+
+    fn finish(self) {
+        if let Some(bar) = self.bar {
+            bar.finish_and_clear();
+        }
+    }
+}
+
+/// Refuses a campaign of no cases, and starts its progress display.
+fn fuzz_progress(cases: u64) -> Result<FuzzProgress> {
+    use std::io::IsTerminal;
+    if cases == 0 {
+        return Err(Error::Usage(
+            "--cases must be at least 1: a campaign of no cases shows nothing".into(),
+        ));
+    }
+    let bar = if std::io::stderr().is_terminal() {
+        let bar = indicatif::ProgressBar::new(cases);
+        bar.set_style(
+            indicatif::ProgressStyle::with_template(
+                "{elapsed_precise} [{bar:40}] {pos}/{len} cases, eta {eta}",
+            )
+            .map_err(|e| Error::Usage(format!("progress bar: {e}")))?,
+        );
+        Some(bar)
+    } else {
+        None
+    };
+    Ok(FuzzProgress { bar, cases })
+}
+
+/// `fuzz --domains`: the campaign of `crate::fuzz_domains`, any mesher that keeps segments
+/// (Triangle, CGAL and hex each case in a child process).
+fn fuzz_domains(args: &FuzzArgs) -> Result<ExitCode> {
+    let runner = crate::fuzz_domains::runner_for(&args.mesher)?;
+    let bar = fuzz_progress(args.cases)?;
+    let summary = crate::fuzz_domains::domain_campaign(
+        &args.mesher,
+        args.cases,
+        args.seed,
+        args.out.as_deref(),
+        &runner,
+        |done| bar.set(done),
+    );
+    bar.finish();
+    let summary = summary?;
+    print!("{summary}");
     Ok(if summary.failures == 0 {
         ExitCode::SUCCESS
     } else {

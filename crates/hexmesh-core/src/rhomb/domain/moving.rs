@@ -60,6 +60,11 @@ pub enum Outcome {
     Movable { cut: usize },
     /// A part stays uneven: its coarsest triangle is a quarter already, or the sectors could
     /// not be read (the tree is finer than `fine` there, or p is on the root's boundary).
+    /// Open case, left unresolved: halves cut at neighbouring corners can put triangles of
+    /// three sizes around p (quarters of a cut half beside quarters of a cut smaller half),
+    /// which the paper's rule, made for a corner of two rhomb sizes, does not reach. On imr
+    /// one corner (level-10 vertex (815, 555)) ends so; splitting the leaf under the coarsest
+    /// quarter in the tree proper would be the next thing to try.
     Stuck,
 }
 
@@ -150,6 +155,26 @@ mod tests {
             .map(|t| t.cell.level)
             .collect();
         assert_eq!(levels, vec![2, 3, 3, 3, 2, 2]);
+    }
+
+    #[test]
+    fn a_part_whose_coarsest_triangle_is_a_quarter_is_stuck() {
+        let tree = two_sizes();
+        let fine = 2 + FINER;
+        let p = (2 << FINER, 2 << FINER);
+        let mut halves = Halves::default();
+        // Sector 3's level-3 leaf half and sector 4's level-2 half cut beforehand: part 3, 4,
+        // 5 holds triangles of levels 4, 3 and 2. Cutting sector 5's half leaves levels 4, 3,
+        // 3, the level-3 ones quarters, which are not cut again.
+        assert!(halves.cut(Cell::new(3, 3, 3), 1) && halves.cut(Cell::new(2, 2, 1), 0));
+        let levels: Vec<u8> = sectors(&tree, &halves, fine, p)
+            .unwrap()
+            .iter()
+            .map(|t| t.cell.level)
+            .collect();
+        assert_eq!(levels, vec![2, 2, 2, 4, 3, 2]);
+        assert_eq!(ensure(&tree, &mut halves, fine, p, 0), Outcome::Stuck);
+        assert_eq!(halves.len(), 3);
     }
 
     #[test]

@@ -7,23 +7,32 @@
 //! - `crowded` (Sec. 3, step 2): the elements and the 7/5 windows;
 //! - `condition` (step 3): the corner condition;
 //! - `near` (Sec. 5 opening, 5.2 case 1): the tree corners near the boundary and their moves;
+//! - `halves` (Sec. 5.1, the tree operation): a leaf rhomb halved along its short diagonal
+//!   and a half cut into four, kept beside the tree;
+//! - `moving` (step 7, Sec. 5.1): the moving condition at a corner of rhombs of different
+//!   sizes or a splitting point, cutting the larger halves in an uneven part of its hexagon;
 //! - `status` (groundwork of step 9): which tree corners lie in the domain, passed along the
 //!   leaves' sides in time linear in the tree;
 //! - `angles` (tests only): every angle of a domain mesh, exempting only the angles at input
 //!   vertices between two input segments, against the bounds with the rounding allowance.
 //!
-//! Steps 1–3 run (`quad_tree`), and the corners of four equal rhombs near the boundary are
-//! sorted by Sec. 5.2 case 1 (`near_corners`). Not yet implemented, so
-//! `Rhomb::supports_segments` stays false and a permitted domain is refused after its
-//! quad-tree is built, with its figures: centring (steps 4–5, Sec. 5.4), the cut-off acute
-//! corners (step 6, Sec. 5.6), the moving conditions (step 7, Sec. 5.1: the larger rhomb at an
-//! uneven corner is halved and a half split into four, which the tree cannot yet express),
-//! Sec. 5.2 case 2, deleting what lies outside (step 9), the border-boxes with their Steiner
-//! points and the melting of step 16 (Sec. 5.3; where to put the Steiner point the paper
-//! leaves open), and the triangulations of steps 10 and 12–15 (Sec. 5.5–5.8).
+//! Steps 1–3 run (`quad_tree`), the corners of four equal rhombs near the boundary are sorted
+//! by Sec. 5.2 case 1, and step 7 enforces the moving condition at the others
+//! (`near_corners`). Not yet implemented, so `Rhomb::supports_segments` stays false and a
+//! permitted domain is refused after step 7, with its figures: centring (steps 4–5, Sec.
+//! 5.4), the cut-off acute corners (step 6, Sec. 5.6), the Sec. 5.2 case 2 moves of the
+//! corners step 7 made movable (and their neighbours a_{j-1}, a_{j-2}), the moving condition
+//! at the new corners the cut halves bring (their midpoints), what a cut half's hanging
+//! points do to its equal-size neighbours' patterns (step 10), deleting what lies outside
+//! (step 9), the border-boxes with their Steiner points and the melting of step 16 (Sec.
+//! 5.3; where to put the Steiner point the paper leaves open), and the triangulations of
+//! steps 10 and 12–15 (Sec. 5.5–5.8).
 //!
 //! Departures so far: several outer polygons in one tree (`input`); the path condition of
-//! crowdedness not tested (`crowded`). Both split at least as much as the paper.
+//! crowdedness not tested (`crowded`). Both split at least as much as the paper. Step 7 makes
+//! each part of a hexagon even at its corner rather than in the hexagon of the largest side
+//! (`moving`), and a corner of rhombs of different sizes in the tree stays in case 2 after
+//! step 7 has evened it.
 
 #[cfg(test)]
 mod angles;
@@ -31,7 +40,9 @@ mod condition;
 mod corner;
 mod crowded;
 mod exact;
+mod halves;
 mod input;
+mod moving;
 mod near;
 mod status;
 
@@ -87,8 +98,9 @@ pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
             "the input is a permitted polygonal domain ({} polygons; corners: {} of at most \
              60°, {} of 60°-150°, {} above 150°; {} single points; {} rhombs after steps 1-3; \
              tree corners in the domain near the boundary: {} to stay and {} to move by Sec. \
-             5.2 case 1, {} at rhombs of different sizes), but rhomb does not mesh domains \
-             yet (paper 001 Sec. 4 steps 4-16)",
+             5.2 case 1, {} at rhombs of different sizes, of which {} made movable by step 7 \
+             (Sec. 5.1: {} rhomb halves cut into four) and {} not), but rhomb does not mesh \
+             domains yet (paper 001 Sec. 4 steps 4-16)",
             domain.polygons.len(),
             count[0],
             count[1],
@@ -97,33 +109,41 @@ pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
             tree.leaf_count(),
             near.stay,
             near.moved,
-            near.unequal
+            near.unequal,
+            near.movable,
+            near.cut,
+            near.unequal - near.movable
         ),
     ))
 }
 
 /// How the tree corners inside the domain whose hexagon the boundary crosses divide among
-/// Sec. 5.2's cases.
+/// Sec. 5.2's cases, after step 7 (Sec. 5.1).
 #[derive(Debug, Default, PartialEq)]
 struct NearCounts {
     /// Corners of four equal rhombs, the boundary at least half a side away.
     stay: usize,
     /// Corners of four equal rhombs moved by Sec. 5.2 case 1.
     moved: usize,
-    /// Corners of rhombs of different sizes (Sec. 5.1, 5.2 case 2).
+    /// Corners of rhombs of different sizes or halves cut into four (Sec. 5.2 case 2).
     unequal: usize,
+    /// Of `unequal`, those step 7 made movable: both parts of their hexagon even.
+    movable: usize,
+    /// Leaf halves step 7 cut into four.
+    cut: usize,
 }
 
 /// Sorts every tree corner inside the domain (`status`) whose hexagon (of its leaf's side)
-/// the boundary crosses into `NearCounts`.
+/// the boundary crosses into `NearCounts`, after enforcing the moving condition (step 7) at
+/// each that is not a corner of four equal rhombs, over and over until no half is cut.
 fn near_corners(domain: &Domain, tree: &Tree, frame: &Frame) -> NearCounts {
-    use super::lattice::{key, Cell};
-    use super::tree::Cover;
+    use super::lattice::key;
+    use moving::{Outcome, FINER};
     let count = domain.points.len();
     let status = status::statuses(domain, tree, frame);
     let elements = crowded::DomainElements::new(domain, vec![[0.0; 2]; count]);
     let mut seen = super::tree::KeySet::default();
-    let mut out = NearCounts::default();
+    let mut near: Vec<(u8, i64, i64, near::Nearest)> = Vec::new();
     for c in tree.leaves() {
         let boundary: Vec<[crate::geom::Point; 2]> = tree
             .window(c)
@@ -150,22 +170,48 @@ fn near_corners(domain: &Domain, tree: &Tree, frame: &Frame) -> NearCounts {
             let Some(nearest) = near::nearest(p, &hexagon, &boundary, scale) else {
                 continue;
             };
-            if status.get(&key(c.level, i, j)) != Some(&status::Status::Inside) {
-                continue;
+            if status.get(&key(c.level, i, j)) == Some(&status::Status::Inside) {
+                near.push((c.level, i, j, nearest));
             }
-            let equal = [(0, 0), (-1, 0), (0, -1), (-1, -1)]
-                .iter()
-                .all(|&(di, dj)| {
-                    let cell = Cell::new(c.level, i + di, j + dj);
-                    tree.cover(cell) == Cover::Leaf(cell)
-                });
-            if !equal {
-                out.unequal += 1;
-            } else if near::moved(c.level, i, j, nearest) == (c.level + 1, 2 * i, 2 * j) {
-                out.stay += 1;
-            } else {
-                out.moved += 1;
+        }
+    }
+    // Whether a corner is one of four equal rhombs, read with the halves cut so far.
+    let equal = |halves: &halves::Halves, &(level, i, j, _): &(u8, i64, i64, near::Nearest)| {
+        let (fine, p) = (level + FINER, (i << FINER, j << FINER));
+        moving::sectors(tree, halves, fine, p)
+            .is_some_and(|t| t[0].cell.level == level && moving::even(&t, fine, p))
+    };
+    let mut halves = halves::Halves::default();
+    // Case 2 is decided by the tree: a cut made at one corner may even out a neighbour's
+    // sectors, but it stays a corner of rhombs of different sizes. A cut may also make a
+    // corner of four equal rhombs uneven: it joins case 2 from then on.
+    let mut uneven: Vec<bool> = near.iter().map(|c| !equal(&halves, c)).collect();
+    let mut outcomes = vec![Outcome::Stuck; near.len()];
+    loop {
+        let before = halves.len();
+        for (k, &(level, i, j, nearest)) in near.iter().enumerate() {
+            uneven[k] |= !equal(&halves, &near[k]);
+            if uneven[k] {
+                let (fine, p) = (level + FINER, (i << FINER, j << FINER));
+                outcomes[k] = moving::ensure(tree, &mut halves, fine, p, nearest.side);
             }
+        }
+        if halves.len() == before {
+            break;
+        }
+    }
+    let mut out = NearCounts {
+        cut: halves.len(),
+        ..NearCounts::default()
+    };
+    for (k, &(level, i, j, nearest)) in near.iter().enumerate() {
+        if uneven[k] {
+            out.unequal += 1;
+            out.movable += usize::from(matches!(outcomes[k], Outcome::Movable { .. }));
+        } else if near::moved(level, i, j, nearest) == (level + 1, 2 * i, 2 * j) {
+            out.stay += 1;
+        } else {
+            out.moved += 1;
         }
     }
     out
@@ -281,6 +327,17 @@ mod tests {
         assert!(
             near.stay > 0 && near.moved > 0 && near.unequal > 0,
             "{near:?}"
+        );
+        // Step 7 makes every corner at rhombs of different sizes movable, cutting halves.
+        assert_eq!(
+            near,
+            NearCounts {
+                stay: 79,
+                moved: 134,
+                unequal: 61,
+                movable: 61,
+                cut: 61
+            }
         );
     }
 

@@ -11,8 +11,8 @@
 //! polynomials (`exact`). The moved corner, the midpoint of two level-k lattice vertices, is a
 //! lattice vertex of level k + 1: its position comes from its key like every other.
 //!
-//! Corners at rhombs of different sizes and splitting points (Sec. 5.1 moving conditions, 5.2
-//! case 2) are not handled here yet.
+//! Corners at rhombs of different sizes and splitting points are made movable by `moving`
+//! (Sec. 5.1); their Sec. 5.2 case 2 moves are not implemented yet.
 
 use super::exact::Exact;
 use crate::geom::{orient2d, Point};

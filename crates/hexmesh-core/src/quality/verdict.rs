@@ -178,30 +178,33 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             let corners = input
                 .filter(|i| b.whole_sharp_corners && i.has_segments())
                 .map(super::corners::InputCorners::new);
-            let mut exempt = 0usize;
-            let mut smallest: Option<f64> = None;
-            let mut uses = Vec::new();
-            for (t, c) in covered() {
-                for (k, u) in angle_uses(t, c, limit, 180.0).into_iter().enumerate() {
-                    let whole = u.value < limit
-                        && corners
-                            .as_ref()
-                            .is_some_and(|k3| k3.whole_at(c[k], c[(k + 1) % 3], c[(k + 2) % 3]));
+            // Streamed, as `angle_fit` is: a mesh of 10^8 triangles has 3·10^8 angles.
+            let exempt = std::cell::Cell::new(0usize);
+            let smallest = std::cell::Cell::new(None::<f64>);
+            let kept = covered()
+                .flat_map(|(t, c)| {
+                    let uses = angle_uses(t, c, limit, 180.0);
+                    (0..3).map(move |k| (uses[k], [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]))
+                })
+                .filter_map(|(u, [a, b, c])| {
+                    let whole =
+                        u.value < limit && corners.as_ref().is_some_and(|k| k.whole_at(a, b, c));
                     if whole {
-                        exempt += 1;
+                        exempt.set(exempt.get() + 1);
+                        None
                     } else {
-                        smallest = Some(smallest.map_or(u.value, |s: f64| s.min(u.value)));
-                        uses.push(u);
+                        smallest.set(Some(smallest.get().map_or(u.value, |s| s.min(u.value))));
+                        Some(u)
                     }
-                }
-            }
+                });
+            let fit = fit_of(kept);
             let value = if corners.is_some() {
-                smallest
+                smallest.get()
             } else {
                 m.min_angle.map(|w| w.value)
             };
-            bound("min angle (deg)", value, true, limit, fit_of(uses));
-            exempt_corners = exempt;
+            bound("min angle (deg)", value, true, limit, fit);
+            exempt_corners = exempt.get();
         }
         if let Some(limit) = b.max_angle {
             let fit = angle_fit(covered(), 0.0, limit);

@@ -92,6 +92,20 @@ pub struct FuzzFailure {
     pub path: Option<PathBuf>,
 }
 
+/// Records a failing case in a campaign's list and, when it is the first, as its first
+/// failure; `write` puts its input into the campaign's directory (given one), for the first
+/// hundred failures.
+pub(crate) fn record_failure<E, W: FnOnce() -> Result<PathBuf, E>>(
+    failed: &mut Vec<(u64, &'static str, Option<PathBuf>)>,
+    first: &mut Option<FuzzFailure>,
+    mut failure: FuzzFailure,
+    write: Option<W>,
+) {
+    failure.path = write.filter(|_| failed.len() < 100).and_then(|w| w().ok());
+    failed.push((failure.case, failure.family, failure.path.clone()));
+    first.get_or_insert(failure);
+}
+
 /// The families of generated point sets, in the order cases cycle through them.
 /// The first seven are the original families, whose point sets are generated as before but
 /// for near-duplicates, which reach 1e-11 of their coordinates apart (they stopped at 1e-9);
@@ -272,21 +286,17 @@ pub fn fuzz_campaign_sized(
             summary.families[fam].failures += 1;
             // Every failing input is written when there is a directory for them (up to a
             // hundred files).
-            let path = match out {
-                Some(dir) if summary.failed.len() < 100 => {
-                    write_failure(dir, mesher, seed, case, family, &input).ok()
-                }
-                _ => None,
-            };
-            summary.failed.push((case, family, path.clone()));
-            if summary.first_failure.is_none() {
-                summary.first_failure = Some(FuzzFailure {
+            record_failure(
+                &mut summary.failed,
+                &mut summary.first_failure,
+                FuzzFailure {
                     case,
                     family,
                     message,
-                    path,
-                });
-            }
+                    path: None,
+                },
+                out.map(|dir| move || write_failure(dir, mesher, seed, case, family, &input)),
+            );
         }
         progress(case + 1);
     }

@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 use std::time::Duration;
 
 use crate::error::{Error, InputError, Result};
-use crate::fuzz::{FamilyCounts, FuzzFailure};
+use crate::fuzz::{record_failure, FamilyCounts, FuzzFailure};
 use crate::isolate;
 use crate::mesh::Pslg;
 use crate::mesher::{Budget, MeshRun, Mesher, Params, StopReason};
@@ -319,21 +319,17 @@ pub fn domain_campaign_with(
                 count(&mut summary.failure_reasons, reason, case, family, &message);
                 summary.failures += 1;
                 summary.families[fam].failures += 1;
-                let path = match out {
-                    Some(dir) if summary.failed.len() < 100 => {
-                        write_failure(dir, mesher, seed, case, family, input).ok()
-                    }
-                    _ => None,
-                };
-                summary.failed.push((case, family, path.clone()));
-                if summary.first_failure.is_none() {
-                    summary.first_failure = Some(FuzzFailure {
+                record_failure(
+                    &mut summary.failed,
+                    &mut summary.first_failure,
+                    FuzzFailure {
                         case,
                         family,
                         message,
-                        path,
-                    });
-                }
+                        path: None,
+                    },
+                    out.map(|dir| move || write_failure(dir, mesher, seed, case, family, input)),
+                );
             }
         }
         progress(case + 1);

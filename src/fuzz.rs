@@ -241,7 +241,8 @@ pub fn fuzz_campaign_sized(
             Ok(run) => {
                 // Validity (one disc, every input point a vertex bit for bit) and every bound
                 // the mesher promises, each angle and ratio up to its rounding allowance.
-                let v = quality::verdict(&run.mesh, Some(&input), promised.as_ref());
+                let v = quality::verdict(&run.mesh, Some(&input), promised.as_ref())
+                    .numbered(quality::Numbering::FILES);
                 let f = Figures::of(&v);
                 if let Some(used) = f.rounding_used {
                     summary.rounding_used[rounding_bin(used)] += 1;

@@ -314,7 +314,22 @@ fn run_in_child(name: &str, input: &Pslg, params: &Params) -> Result<(MeshRun, u
     let start = Instant::now();
     let mut run = mesher.mesh(input, params)?;
     run.elapsed = start.elapsed();
-    Ok((run, peak_rss("/proc/self/status")))
+    Ok((run, peak_rss("/proc/self/status").max(children_peak_rss())))
+}
+
+/// The largest peak resident set size of the processes this one has waited for (a mesher
+/// that runs a program, as `gmsh` does), in bytes; 0 where unknown.
+fn children_peak_rss() -> u64 {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: getrusage writes one `rusage` into the zeroed value it is given.
+        let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+        if unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) } == 0 {
+            // Linux reports ru_maxrss in kilobytes.
+            return u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024;
+        }
+    }
+    0
 }
 
 /// Writes out what C code left in its stdio buffers, so that it lands before the answer.

@@ -14,7 +14,7 @@ use crate::error::{Error, Result};
 use crate::isolate::run_isolated;
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::Params;
-use crate::quality::{metrics, validate, ValidateOptions};
+use crate::quality::{metrics, validate, Numbering, ValidateOptions};
 
 /// The paper's first requested angle, in degrees.
 pub const DEFAULT_START: f64 = 20.0;
@@ -194,7 +194,8 @@ pub fn check_mesh(
         conforming: conforming && input.has_segments(),
     };
     if let Some(v) = validate(mesh, Some(input), &options).first() {
-        return Err(v.to_string());
+        // Numbered as the files `hexmesh mesh` writes and `--out` inputs are written: from 1.
+        return Err(v.describe(Numbering::FILES));
     }
     metrics(mesh, Some(input))
         .min_angle
@@ -236,7 +237,7 @@ mod tests {
             triangles: vec![[0, 1, 2]],
         };
         let err = check_mesh(&input, &mesh, false).unwrap_err();
-        assert!(err.contains("input point 0"), "{err}");
+        assert!(err.contains("input point 1 "), "{err}");
     }
 
     #[test]

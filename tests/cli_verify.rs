@@ -54,7 +54,7 @@ fn an_edge_used_three_times_is_caught() {
 
 #[test]
 fn overlapping_triangles_are_caught() {
-    assert_caught("overlapping_triangles", &[], "fold at interior vertex 0");
+    assert_caught("overlapping_triangles", &[], "fold at interior vertex 1 ");
     assert_caught(
         "nested_triangle_overlap",
         &[],
@@ -89,7 +89,7 @@ fn a_meshed_hole_and_a_mesh_past_the_segments_are_caught_against_the_input() {
     assert_caught(
         "hole_meshed",
         &["--input", &input, "--bounds", "triangle"],
-        "hole seed 0 (1.5, 1.5) lies in triangle 8",
+        "hole seed 1 (1.5, 1.5) lies in triangle 9:",
     );
     let input = fixture("spills_past_segments_input.poly");
     assert_caught(
@@ -238,4 +238,79 @@ fn a_domain_mesh_with_holes_passes_its_bounds_without_the_input() {
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stdout).contains("hole in the mesh"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn messages_number_vertices_triangles_and_input_items_as_the_files_read_do() {
+    // The fold of overlapping_triangles, written numbered from 0: its vertex 0 is the 1 of
+    // the 1-based fixture, and the worst triangle is named by its .ele number in each file.
+    let dir = std::env::temp_dir().join(format!("hexmesh-numbering-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let node = std::fs::read_to_string(fixture("overlapping_triangles.node")).unwrap();
+    let ele = std::fs::read_to_string(fixture("overlapping_triangles.ele")).unwrap();
+    let shift = |text: &str, skip_header: bool| -> String {
+        let mut header = skip_header;
+        text.lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(|l| {
+                if header {
+                    header = false;
+                    return l.to_string();
+                }
+                let n: Vec<i64> = l.split_whitespace().map(|w| w.parse().unwrap()).collect();
+                let first = [n[0] - 1];
+                let rest: Vec<i64> = if n.len() == 4 {
+                    n[1..].iter().map(|v| v - 1).collect()
+                } else {
+                    n[1..].to_vec()
+                };
+                first
+                    .iter()
+                    .chain(&rest)
+                    .map(|v| v.to_string())
+                    .collect::<Vec<_>>()
+                    .join(" ")
+            })
+            .collect::<Vec<_>>()
+            .join("\n")
+            + "\n"
+    };
+    std::fs::write(dir.join("zero.node"), shift(&node, true)).unwrap();
+    std::fs::write(dir.join("zero.ele"), shift(&ele, true)).unwrap();
+    let zero = dir.join("zero");
+    let out = hexmesh(&["verify", zero.to_str().unwrap()]);
+    let text = String::from_utf8_lossy(&out.stdout).to_string();
+    assert_eq!(out.status.code(), Some(1), "{text}");
+    assert!(text.contains("fold at interior vertex 0 "), "{text}");
+    assert!(
+        text.contains("boundary edges [1, 2] (10, 0)-(-8, 6)"),
+        "{text}"
+    );
+    let (_, one) = verify("overlapping_triangles", &[]);
+    assert!(one.contains("fold at interior vertex 1 "), "{one}");
+    assert!(
+        one.contains("boundary edges [2, 3] (10, 0)-(-8, 6)"),
+        "{one}"
+    );
+
+    // Input items follow the input file: hole seed 1 of a 1-based .poly, the worst triangle
+    // by its .ele number.
+    let (_, text) = verify(
+        "hole_meshed",
+        &[
+            "--input",
+            &fixture("hole_meshed_input.poly"),
+            "--bounds",
+            "triangle",
+        ],
+    );
+    assert!(
+        text.contains("hole seed 1 (1.5, 1.5) lies in triangle 9:"),
+        "{text}"
+    );
+    assert!(
+        text.contains("worst triangle 2 (0, 0) (2, 1) (1, 1)"),
+        "{text}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -11,7 +11,7 @@ use clap::{Args, Parser, Subcommand};
 use crate::error::{Error, Result};
 use crate::mesh::Pslg;
 use crate::mesher::{Budget, Mesher, Params};
-use crate::quality::Bounds;
+use crate::quality::{Bounds, Numbering};
 
 #[derive(Parser)]
 #[command(
@@ -248,11 +248,17 @@ fn run(command: Command) -> Result<ExitCode> {
 
 /// Reads INPUT: a file when it exists or has an extension, else a dataset or PSLG example name.
 fn load_input(input: &str) -> Result<Pslg> {
+    load_input_numbered(input).map(|(pslg, _)| pslg)
+}
+
+/// [`load_input`], and the number of the input's first point: the file's, or 1 for a dataset
+/// (as `hexmesh datasets` writes it).
+fn load_input_numbered(input: &str) -> Result<(Pslg, u32)> {
     let path = Path::new(input);
     if path.exists() || path.extension().is_some() {
-        crate::io::read_input(path)
+        crate::io::read_input_numbered(path)
     } else {
-        crate::datasets::by_name(input)
+        crate::datasets::by_name(input).map(|pslg| (pslg, 1))
     }
 }
 
@@ -284,7 +290,7 @@ fn datasets(out: &Path, scaling: bool) -> Result<ExitCode> {
 }
 
 fn mesh(args: &MeshArgs) -> Result<ExitCode> {
-    let input = load_input(&args.input)?;
+    let (input, input_base) = load_input_numbered(&args.input)?;
     input.validate_input()?;
     let mesher = crate::registry::mesher(&args.mesher)?;
     let formats = args
@@ -360,7 +366,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     let failed = if args.no_check {
         None
     } else {
-        failed_promise(mesher.as_ref(), &params, &input, &run.mesh)
+        failed_promise(mesher.as_ref(), &params, (&input, input_base), &run.mesh)
     };
     if let Some(path) = &args.hexagons {
         match mesher.name() {
@@ -404,15 +410,19 @@ fn refuse_to_overwrite_input(args: &MeshArgs, formats: &[crate::io::Format]) -> 
 /// What `mesh` holds a finished mesh to: what the mesher promises for the run's parameters
 /// (`Mesher::promise`; a reference: the minimum angle it was asked for, its default one when
 /// none was). Returns the bounds' name and the first problem when the mesh fails them: no
-/// mesh is passed on as good without being checked.
+/// mesh is passed on as good without being checked. The problem numbers vertices and
+/// triangles as the written files do (from 1), input items as the input file does.
 fn failed_promise(
     mesher: &dyn Mesher,
     params: &Params,
-    input: &Pslg,
+    (input, input_base): (&Pslg, u32),
     mesh: &crate::mesh::TriMesh,
 ) -> Option<(String, String)> {
     let bounds = mesher.promise(params);
-    let verdict = crate::quality::verdict(mesh, Some(input), Some(&bounds));
+    let verdict = crate::quality::verdict(mesh, Some(input), Some(&bounds)).numbered(Numbering {
+        mesh: 1,
+        input: input_base,
+    });
     (!verdict.passed()).then(|| (verify_name(&bounds), crate::report::first_problem(&verdict)))
 }
 
@@ -434,14 +444,20 @@ fn verify_name(bounds: &Bounds) -> String {
 }
 
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {
-    let mesh = crate::io::read_mesh(&args.prefix)?;
-    let input = args.input.as_deref().map(load_input).transpose()?;
+    let (mesh, mesh_base) = crate::io::read_mesh_numbered(&args.prefix)?;
+    let input = args.input.as_deref().map(load_input_numbered).transpose()?;
+    let numbering = Numbering {
+        mesh: mesh_base,
+        input: input.as_ref().map_or(1, |(_, base)| *base),
+    };
+    let input = input.map(|(pslg, _)| pslg);
     let bounds = args
         .bounds
         .as_deref()
         .map(crate::registry::bounds)
         .transpose()?;
-    let verdict = crate::quality::verdict(&mesh, input.as_ref(), bounds.as_ref());
+    let verdict =
+        crate::quality::verdict(&mesh, input.as_ref(), bounds.as_ref()).numbered(numbering);
     if args.json {
         let json = serde_json::to_string_pretty(&verdict)
             .map_err(|e| Error::Usage(format!("cannot render the verdict as JSON: {e}")))?;

@@ -63,11 +63,15 @@ pub enum Runner {
 }
 
 /// True for the meshers that run in a child process: C and C++ code (Triangle, CGAL) can
-/// exit or abort the process and Triangle does not keep a budget; `hex` is slow on many
+/// exit or abort the process and Triangle does not keep a budget; `gmsh` runs a program that
+/// must not outlive a timeout (it dies with the child); `hex` is slow on many
 /// domains (up to its 20 s budget), and a domain on which it missed its budget would stall
 /// the campaign, so it is bounded by the child's timeout too.
 pub fn runs_isolated(mesher: &str) -> bool {
-    matches!(mesher, "triangle" | "cgal" | "cgal-conforming" | "hex")
+    matches!(
+        mesher,
+        "triangle" | "cgal" | "cgal-conforming" | "gmsh" | "hex"
+    )
 }
 
 /// The runner a campaign of `mesher` uses (`runs_isolated`); an isolated one needs the
@@ -400,7 +404,7 @@ fn run_case(
         return failed(reason, format!("stopped early: {why}"));
     }
     match catch_unwind(AssertUnwindSafe(|| {
-        quality::verdict(&run.mesh, Some(input), Some(bounds))
+        quality::verdict(&run.mesh, Some(input), Some(bounds)).numbered(quality::Numbering::FILES)
     })) {
         Ok(v) if v.passed() => Outcome::Passed(Box::new(v)),
         Ok(v) => {

@@ -205,7 +205,7 @@ impl Mesher for TriangleMesher {
         }) {
             return Err(Error::mesher(
                 NAME,
-                format!("Triangle moved input point {i}"),
+                format!("Triangle moved input point {} (numbered from 1)", i + 1),
             ));
         }
         let triangles: Vec<[u32; 3]> = (0..gen.out_ncell())

@@ -111,7 +111,9 @@ pub(super) fn run_case(
         return outcome;
     }
     let bounds = mesher.promise(&params);
-    let verdict = quality::verdict(&run.mesh, Some(input), Some(&bounds));
+    // Messages number as the files `hexmesh datasets` and `hexmesh mesh` write: from 1.
+    let verdict =
+        quality::verdict(&run.mesh, Some(input), Some(&bounds)).numbered(quality::Numbering::FILES);
     let m = &verdict.metrics;
     row.vertices = Some(m.vertices as u64);
     row.steiner_points = Some(m.vertices.saturating_sub(row.points as usize) as u64);
@@ -153,7 +155,7 @@ pub(crate) fn first_problem(v: &quality::Verdict) -> String {
         } else {
             String::new()
         };
-        return one_line(&format!("{first}{tail}"));
+        return one_line(&format!("{}{tail}", first.describe(v.numbering)));
     }
     v.checks
         .iter()

@@ -98,7 +98,10 @@ pub fn lsb_rows(
                     row.adaptive_triangles = Some(mesh.triangles.len() as u64);
                     row.adaptive_min_ratio = d.min_ratio.map(|(r, _)| r);
                     if let Some(t) = d.first_unlocated {
-                        row.err = format!("triangle {t} lies outside the initial triangulation");
+                        row.err = format!(
+                            "triangle {} (numbered from 1) lies outside the initial triangulation",
+                            t + 1
+                        );
                     }
                 }
                 Ok(iso) => {

@@ -53,7 +53,7 @@ fn read_font(path: &Path) -> Result<Vec<u8>> {
 
 /// Colours by mesher name, the same in every plot of a report.
 pub fn mesher_color(name: &str) -> RGBColor {
-    const KNOWN: [&str; 9] = [
+    const KNOWN: [&str; 10] = [
         "hex",
         "hex-simple",
         "cgal",
@@ -63,8 +63,9 @@ pub fn mesher_color(name: &str) -> RGBColor {
         "rhomb",
         "saalfeld",
         "lsb",
+        "gmsh",
     ];
-    const COLORS: [RGBColor; 10] = [
+    const COLORS: [RGBColor; 11] = [
         RGBColor(214, 39, 40),
         RGBColor(255, 127, 14),
         RGBColor(31, 119, 180),
@@ -75,8 +76,9 @@ pub fn mesher_color(name: &str) -> RGBColor {
         RGBColor(227, 119, 194),
         RGBColor(127, 127, 127),
         RGBColor(188, 189, 34),
+        RGBColor(0, 0, 0),
     ];
-    let i = KNOWN.iter().position(|k| *k == name).unwrap_or(9);
+    let i = KNOWN.iter().position(|k| *k == name).unwrap_or(KNOWN.len());
     COLORS[i]
 }
 

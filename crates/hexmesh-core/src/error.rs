@@ -120,7 +120,7 @@ pub enum InputError {
         /// The 0-based index of the polygon's first segment.
         segment: usize,
     },
-    /// Point `point` (0-based), on no segment, lies outside the domain or in a hole.
+    /// Point `point` (0-based) lies outside the domain or in a hole.
     PointOutsideDomain {
         /// The point's 0-based index.
         point: usize,
@@ -232,8 +232,8 @@ impl InputError {
                 n(segment)
             ),
             InputError::PointOutsideDomain { point } => format!(
-                "point {} lies on no segment and outside the domain (outside every polygon \
-                 or in a hole)",
+                "point {} lies outside the domain (outside every polygon the segments bound, \
+                 or in a hole), so it cannot be a vertex of the mesh",
                 n(point)
             ),
             InputError::Range { detail } => detail.clone(),

@@ -35,7 +35,7 @@ pub mod subdivision;
 
 use std::time::Instant;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, InputError, Result};
 use crate::geom::{Hexagon, Point};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
@@ -141,10 +141,11 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
         .iter()
         .position(|&p| !root.contains_strictly(p))
     {
-        return Err(Error::mesher(
-            mesher,
-            format!("point {i} does not lie strictly inside the bounding hexagon"),
-        ));
+        return Err(Error::input(InputError::OutsideHexagon {
+            index: i,
+            point: input.points[i],
+            fitted: input.hexagon.is_none(),
+        }));
     }
     let mut h = Hierarchy::new(Lattice::new(root), input.points.clone(), params.budget);
     h.set_max_rounding(params.max_rounding_deg());

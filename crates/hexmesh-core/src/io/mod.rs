@@ -98,9 +98,15 @@ impl fmt::Display for Format {
 /// [`Error::Input`], except duplicate points, which are an [`Error::Parse`] naming both lines.
 /// A `# hexmesh: hexagon CX CY R [COS SIN]` comment sets [`Pslg::hexagon`].
 pub fn read_input(path: &Path) -> Result<Pslg> {
+    read_input_numbered(path).map(|(pslg, _)| pslg)
+}
+
+/// [`read_input`], and the number of the file's first point (0 or 1), by which messages name
+/// its points, segments and holes (`quality::Numbering::input`).
+pub fn read_input_numbered(path: &Path) -> Result<(Pslg, u32)> {
     let (pslg, source, base) = read_sourced(path)?;
     match pslg.check() {
-        Ok(()) => Ok(pslg),
+        Ok(()) => Ok((pslg, base)),
         Err(problem) => Err(source.locate(&pslg, base, problem)),
     }
 }
@@ -326,6 +332,12 @@ fn mesh_prefix(path: &Path) -> PathBuf {
 /// geometric defects (clockwise or degenerate triangles, duplicate vertices) are kept, so that
 /// `verify` can report them.
 pub fn read_mesh(prefix: &Path) -> Result<TriMesh> {
+    read_mesh_numbered(prefix).map(|(mesh, _)| mesh)
+}
+
+/// [`read_mesh`], and the number of the first vertex of the `.node` file (0 or 1), by which
+/// messages name its vertices and triangles (`quality::Numbering::mesh`).
+pub fn read_mesh_numbered(prefix: &Path) -> Result<(TriMesh, u32)> {
     let prefix = mesh_prefix(prefix);
     let node_path = with_suffix(&prefix, "node");
     let ele_path = with_suffix(&prefix, "ele");
@@ -354,10 +366,11 @@ pub fn read_mesh(prefix: &Path) -> Result<TriMesh> {
         }
         triangles.push(zero_based);
     }
-    Ok(TriMesh {
+    let mesh = TriMesh {
         vertices: nodes.points,
         triangles,
-    })
+    };
+    Ok((mesh, base))
 }
 
 /// The files [`write_mesh`] writes for `formats` under `prefix`, in the order it writes them

@@ -304,9 +304,11 @@ fn check_triangle_angles(
         return Err(Error::mesher(
             mesher,
             format!(
-                "internal error: an angle of triangle {} is {}°, beyond [{lo}°, {hi}°] by more \
-                 than its rounding allowance of {:e}°",
-                n.triangle, n.value, n.allowance
+                "internal error: an angle of triangle {} (numbered from 1) is {}°, beyond \
+                 [{lo}°, {hi}°] by more than its rounding allowance of {:e}°",
+                n.triangle + 1,
+                n.value,
+                n.allowance
             ),
         ));
     }

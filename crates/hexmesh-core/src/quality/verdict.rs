@@ -10,7 +10,7 @@ use crate::quality::bounds::Bounds;
 use crate::quality::descent::descent;
 use crate::quality::metrics::{metrics, metrics_split, triangle_shape, Metrics, SplitMetrics};
 use crate::quality::rounding::{self, angle_fit, angle_uses, fit_of, Fit, Use, ANGLE_FLOOR_DEG};
-use crate::quality::validate::{validate, ValidateOptions, Violation};
+use crate::quality::validate::{validate, Numbering, ValidateOptions, Violation};
 
 /// The outcome of one check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -86,9 +86,20 @@ pub struct Verdict {
     pub metrics: Metrics,
     /// Near-segment and interior figures apart, for inputs with segments.
     pub split: Option<SplitMetrics>,
+    /// How the printed verdict numbers vertices, triangles and input items (from 0, the
+    /// library's indices, unless set with [`Verdict::numbered`]); the indices in the fields
+    /// above stay 0-based.
+    pub numbering: Numbering,
 }
 
 impl Verdict {
+    /// The same verdict, printed with `numbering`: the first index of the files the mesh and
+    /// the input were read from.
+    pub fn numbered(mut self, numbering: Numbering) -> Verdict {
+        self.numbering = numbering;
+        self
+    }
+
     /// True when the mesh is valid and no bound fails (skipped checks do not fail).
     pub fn passed(&self) -> bool {
         self.violations.is_empty() && self.checks.iter().all(|c| c.status != Status::Fail)
@@ -308,6 +319,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         checks,
         metrics: all,
         split,
+        numbering: Numbering::default(),
     }
 }
 
@@ -445,7 +457,7 @@ impl fmt::Display for Verdict {
                     f,
                     "FAIL {}: worst triangle {} {} {} {}: {} {} {} fails",
                     c.what,
-                    w.triangle,
+                    self.numbering.mesh_index(w.triangle as u64),
                     point(w.corners[0]),
                     point(w.corners[1]),
                     point(w.corners[2]),
@@ -458,7 +470,7 @@ impl fmt::Display for Verdict {
         if !self.violations.is_empty() {
             writeln!(f, "validity violations ({}):", self.violations.len())?;
             for v in &self.violations {
-                writeln!(f, "  {v}")?;
+                writeln!(f, "  {}", v.describe(self.numbering))?;
             }
         }
         if let Some(s) = &self.split {

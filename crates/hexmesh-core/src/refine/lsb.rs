@@ -22,11 +22,9 @@
 //! inner vertices lie within rounding of the segment (see `saalfeld.rs` for the same choice).
 
 use std::cmp::Reverse;
-use std::collections::{BTreeMap, BinaryHeap, HashMap, HashSet};
+use std::collections::{BTreeMap, BinaryHeap, HashMap};
 
-use spade::{ConstrainedDelaunayTriangulation, Point2};
-
-use super::{carve, compact, domain, ekey, insertion_error, spade_triangles, to_spade, Limits};
+use super::{domain, ekey, Limits};
 use crate::error::{Error, Result};
 use crate::geom::{dist2, orient2d, Point};
 use crate::mesh::{Pslg, TriMesh};
@@ -698,57 +696,11 @@ impl Lsb {
     }
 
     /// The initial triangulation: the constrained Delaunay triangulation of the domain (a PSLG,
-    /// or a point set in its bounding hexagon), without the triangles outside it or in holes.
-    /// Returns the mesh and the domain's segments renumbered to its vertices.
+    /// or a point set in its bounding hexagon), without the triangles outside it or in holes
+    /// ([`super::domain_cdt`]). Returns the mesh and the domain's segments renumbered to its
+    /// vertices.
     pub fn initial(input: &Pslg) -> Result<(TriMesh, Vec<[u32; 2]>)> {
-        input.validate_input()?;
-        let dom = domain(input);
-        let pts: Vec<Point2<f64>> = dom.points.iter().map(|&p| to_spade(p)).collect();
-        let edges: Vec<[usize; 2]> = dom
-            .segments
-            .iter()
-            .map(|s| [s[0] as usize, s[1] as usize])
-            .collect();
-        let mut conflict = None;
-        let cdt =
-            ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(pts, edges, |e| {
-                conflict.get_or_insert(e);
-            })
-            .map_err(|e| insertion_error("lsb", e))?;
-        if let Some([a, b]) = conflict {
-            return Err(Error::mesher(
-                "lsb",
-                format!("segment {a}-{b} conflicts with another segment in the triangulation"),
-            ));
-        }
-        if spade::Triangulation::num_vertices(&cdt) != dom.points.len() {
-            return Err(Error::mesher(
-                "lsb",
-                "two input points coincide after flushing tiny coordinates to zero",
-            ));
-        }
-        let vertices: Vec<Point> = dom.points.clone();
-        let barriers: HashSet<(u32, u32)> = dom.segments.iter().map(|s| ekey(s[0], s[1])).collect();
-        let kept = carve(&vertices, &spade_triangles(&cdt), &barriers, &dom.holes);
-        let (vertices, triangles, map) = compact(&vertices, &kept);
-        if triangles.is_empty() {
-            return Err(Error::mesher(
-                "lsb",
-                "the segments enclose no region to mesh",
-            ));
-        }
-        let segments = dom
-            .segments
-            .iter()
-            .filter_map(|s| Some([map[s[0] as usize]?, map[s[1] as usize]?]))
-            .collect();
-        Ok((
-            TriMesh {
-                vertices,
-                triangles,
-            },
-            segments,
-        ))
+        super::domain_cdt(input, "lsb")
     }
 
     /// Meshes `input`: its initial triangulation refined adaptively to `Lsb::target`.

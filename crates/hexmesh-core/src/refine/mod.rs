@@ -18,11 +18,11 @@ use std::collections::{HashMap, HashSet};
 use std::time::{Duration, Instant};
 
 use spade::handles::FixedVertexHandle;
-use spade::{InsertionError, Point2, Triangulation};
+use spade::{ConstrainedDelaunayTriangulation, InsertionError, Point2, Triangulation};
 
-use crate::error::Error;
+use crate::error::{Error, Result};
 use crate::geom::{orient2d, Point};
-use crate::mesh::Pslg;
+use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Budget, StopReason};
 
 /// The domain a refinement mesher works in: a PSLG as given, a point set inside its bounding
@@ -64,6 +64,62 @@ pub(crate) fn spade_triangles<T: Triangulation>(t: &T) -> Vec<[u32; 3]> {
 
 pub(crate) fn idx(h: FixedVertexHandle) -> u32 {
     h.index() as u32
+}
+
+/// The constrained Delaunay triangulation of the domain (a PSLG, or a point set in its bounding
+/// hexagon: `Pslg::reference_domain`) without the triangles outside it or in holes (Triangle's
+/// convention, [`carve`]), with the vertices no triangle uses dropped ([`compact`]). Returns the
+/// mesh and the domain's segments renumbered to its vertices (those whose two endpoints
+/// remain). Errors name `mesher`: a segment spade could not insert, two points that coincide
+/// once tiny coordinates are flushed, segments that enclose no region.
+pub fn domain_cdt(input: &Pslg, mesher: &str) -> Result<(TriMesh, Vec<[u32; 2]>)> {
+    input.validate_input()?;
+    let dom = domain(input);
+    let pts: Vec<Point2<f64>> = dom.points.iter().map(|&p| to_spade(p)).collect();
+    let edges: Vec<[usize; 2]> = dom
+        .segments
+        .iter()
+        .map(|s| [s[0] as usize, s[1] as usize])
+        .collect();
+    let mut conflict = None;
+    let cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(pts, edges, |e| {
+        conflict.get_or_insert(e);
+    })
+    .map_err(|e| insertion_error(mesher, e))?;
+    if let Some([a, b]) = conflict {
+        return Err(Error::mesher(
+            mesher,
+            format!("segment {a}-{b} conflicts with another segment in the triangulation"),
+        ));
+    }
+    if spade::Triangulation::num_vertices(&cdt) != dom.points.len() {
+        return Err(Error::mesher(
+            mesher,
+            "two input points coincide after flushing tiny coordinates to zero",
+        ));
+    }
+    let vertices: Vec<Point> = dom.points.clone();
+    let barriers: HashSet<(u32, u32)> = dom.segments.iter().map(|s| ekey(s[0], s[1])).collect();
+    let kept = carve(&vertices, &spade_triangles(&cdt), &barriers, &dom.holes);
+    let (vertices, triangles, map) = compact(&vertices, &kept);
+    if triangles.is_empty() {
+        return Err(Error::mesher(
+            mesher,
+            "the segments enclose no region to mesh",
+        ));
+    }
+    let segments = dom
+        .segments
+        .iter()
+        .filter_map(|s| Some([map[s[0] as usize]?, map[s[1] as usize]?]))
+        .collect();
+    Ok((
+        TriMesh {
+            vertices,
+            triangles,
+        },
+        segments,
+    ))
 }
 
 /// Keeps the triangles inside the domain (Triangle's convention for `.poly` files): triangles

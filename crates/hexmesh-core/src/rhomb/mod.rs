@@ -25,7 +25,7 @@ mod tree;
 
 use std::time::Instant;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, InputError, Result};
 use crate::mesh::Pslg;
 use crate::mesher::{MeshRun, Mesher, Params};
 use crate::quality::Bounds;
@@ -87,10 +87,11 @@ impl Mesher for Rhomb {
             ));
         }
         if let Some(i) = input.points.iter().position(|&p| !hex.contains_strictly(p)) {
-            return Err(Error::mesher(
-                NAME,
-                format!("point {i} does not lie strictly inside the bounding hexagon"),
-            ));
+            return Err(Error::input(InputError::OutsideHexagon {
+                index: i,
+                point: input.points[i],
+                fitted: input.hexagon.is_none(),
+            }));
         }
         let frame = Frame::new(hex);
         let coords: Vec<[f64; 2]> = input.points.iter().map(|&p| frame.locate(p)).collect();

@@ -19,8 +19,8 @@ use super::domain::carve;
 use super::fill::fill_cavity;
 use super::flip::flip_interior_cavity_triangles;
 use super::project::projected_centres;
-use super::{leaf_of_vertex, polygon_meets_segment, PslgStats, NAME};
-use crate::error::Error;
+use super::{leaf_of_vertex, polygon_meets_segment, PslgStats};
+use crate::error::{Error, InputError};
 use crate::geom::Point;
 use crate::hex::lattice::{FxHashSet, Key};
 use crate::hex::subdivision::Hierarchy;
@@ -178,14 +178,7 @@ pub(super) fn insert_segments(
         }
     }
     if let Some(i) = (0..n_input).find(|&i| !used[i]) {
-        return Err(Error::mesher(
-            NAME,
-            format!(
-                "input point {i} ({}, {}) lies outside the region the segments bound (or in a \
-                 hole), so it cannot be a vertex of the mesh",
-                input.points[i][0], input.points[i][1]
-            ),
-        ));
+        return Err(Error::input(InputError::PointOutsideDomain { point: i }));
     }
     let mut map = vec![u32::MAX; n_all];
     let mut out_vertices = Vec::new();

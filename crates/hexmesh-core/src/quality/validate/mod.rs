@@ -38,7 +38,7 @@ mod violation;
 mod winding;
 
 pub(crate) use topology::{topology, DirectedEdge, Topology};
-pub use violation::Violation;
+pub use violation::{Numbering, Violation};
 
 use crate::geom::orient2d_scaled;
 use crate::mesh::{Pslg, TriMesh};

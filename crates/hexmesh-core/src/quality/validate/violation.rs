@@ -196,62 +196,128 @@ fn tri(points: &[Point; 3]) -> String {
     format!("{} {} {}", pt(points[0]), pt(points[1]), pt(points[2]))
 }
 
+/// How the numbers in a message count: the number of the first vertex and triangle of the
+/// mesh, and of the first point, segment and hole of the input, as the files the user reads
+/// number them. The library's own indices (in [`Violation`], [`crate::TriMesh`],
+/// [`crate::Pslg`]) count from 0, and so does [`Numbering::default`]; the command line
+/// numbers as the files it read, and from 1 ([`Numbering::FILES`]) for the files it writes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize))]
+pub struct Numbering {
+    /// The number of the mesh's first vertex and first triangle (a `.node`/`.ele` file's
+    /// first index).
+    pub mesh: u32,
+    /// The number of the input's first point, segment and hole.
+    pub input: u32,
+}
+
+impl Numbering {
+    /// Numbers from 1, as every file hexmesh writes (Triangle's default).
+    pub const FILES: Numbering = Numbering { mesh: 1, input: 1 };
+
+    /// A vertex or triangle index `i` of the mesh as the user's files number it.
+    pub fn mesh_index(self, i: impl Into<u64>) -> u64 {
+        i.into() + u64::from(self.mesh)
+    }
+
+    /// Input index `i` as the user's files number it.
+    pub fn input_index(self, i: impl Into<u64>) -> u64 {
+        i.into() + u64::from(self.input)
+    }
+
+    /// Mesh indices as `[a, b, ...]` in the user's numbering.
+    pub fn mesh_list<T: Copy + Into<u64>>(self, list: &[T]) -> String {
+        let items: Vec<String> = list
+            .iter()
+            .map(|&i| self.mesh_index(i).to_string())
+            .collect();
+        format!("[{}]", items.join(", "))
+    }
+}
+
+/// A `usize` index as a `u64` (indices fit: they count items in memory).
+fn n(i: usize) -> u64 {
+    i as u64
+}
+
 impl fmt::Display for Violation {
+    /// The message with the library's 0-based indices; see [`Violation::describe`].
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.describe(Numbering::default()))
+    }
+}
+
+impl Violation {
+    /// The message, with vertices, triangles, input points, segments and holes numbered as
+    /// `numbering` says.
+    pub fn describe(&self, numbering: Numbering) -> String {
+        let m = |i: usize| numbering.mesh_index(n(i));
+        let v = |i: u32| numbering.mesh_index(i);
+        let list = |l: &[u32]| numbering.mesh_list(l);
+        let triangles = |l: &[usize]| {
+            let l: Vec<u64> = l.iter().map(|&t| n(t)).collect();
+            numbering.mesh_list(&l)
+        };
+        let input = |i: usize| numbering.input_index(n(i));
         match self {
             Violation::NoTriangles { vertices } => {
-                write!(f, "the mesh has no triangles ({vertices} vertices)")
+                format!("the mesh has no triangles ({vertices} vertices)")
             }
             Violation::IndexOutOfRange {
                 triangle,
                 corner,
                 vertex,
                 vertices,
-            } => write!(
-                f,
-                "triangle {triangle} corner {corner} names vertex {vertex}, but there are only {vertices} vertices"
+            } => format!(
+                "triangle {} corner {} of 3 names vertex {}, but there are only {vertices} vertices",
+                m(*triangle),
+                corner + 1,
+                v(*vertex)
             ),
             Violation::NonFiniteVertex { vertex, point } => {
-                write!(f, "vertex {vertex} has a non-finite coordinate {}", pt(*point))
+                format!("vertex {} has a non-finite coordinate {}", m(*vertex), pt(*point))
             }
             Violation::Clockwise {
                 triangle,
                 corners,
                 points,
-            } => write!(
-                f,
-                "triangle {triangle} {corners:?} is clockwise: {}",
+            } => format!(
+                "triangle {} {} is clockwise: {}",
+                m(*triangle),
+                list(corners),
                 tri(points)
             ),
             Violation::ZeroArea {
                 triangle,
                 corners,
                 points,
-            } => write!(
-                f,
-                "triangle {triangle} {corners:?} has zero area: {}",
+            } => format!(
+                "triangle {} {} has zero area: {}",
+                m(*triangle),
+                list(corners),
                 tri(points)
             ),
             Violation::EdgeOverused {
                 edge,
                 points,
-                triangles,
-            } => write!(
-                f,
-                "edge {edge:?} {}-{} is used by {} triangles {triangles:?}; at most two may share an edge",
+                triangles: ts,
+            } => format!(
+                "edge {} {}-{} is used by {} triangles {}; at most two may share an edge",
+                list(edge),
                 pt(points[0]),
                 pt(points[1]),
-                triangles.len()
+                ts.len(),
+                triangles(ts)
             ),
             Violation::EdgeSameDirection {
                 edge,
                 points,
-                triangles,
-            } => write!(
-                f,
-                "triangles {} and {} traverse edge {edge:?} {}-{} in the same direction (one of them is flipped)",
-                triangles[0],
-                triangles[1],
+                triangles: ts,
+            } => format!(
+                "triangles {} and {} traverse edge {} {}-{} in the same direction (one of them is flipped)",
+                m(ts[0]),
+                m(ts[1]),
+                list(edge),
                 pt(points[0]),
                 pt(points[1])
             ),
@@ -259,22 +325,23 @@ impl fmt::Display for Violation {
                 first,
                 second,
                 point,
-            } => write!(
-                f,
-                "vertices {first} and {second} are duplicates, both at {}",
+            } => format!(
+                "vertices {} and {} are duplicates, both at {}",
+                m(*first),
+                m(*second),
                 pt(*point)
             ),
             Violation::UnreferencedVertex { vertex, point } => {
-                write!(f, "vertex {vertex} at {} belongs to no triangle", pt(*point))
+                format!("vertex {} at {} belongs to no triangle", m(*vertex), pt(*point))
             }
             Violation::OpenBoundary {
                 vertex,
                 point,
                 incoming,
                 outgoing,
-            } => write!(
-                f,
-                "the boundary is not closed at vertex {vertex} {}: {incoming} boundary edges come in, {outgoing} go out",
+            } => format!(
+                "the boundary is not closed at vertex {} {}: {incoming} boundary edges come in, {outgoing} go out",
+                m(*vertex),
                 pt(*point)
             ),
             Violation::BoundaryCrossing {
@@ -282,11 +349,12 @@ impl fmt::Display for Violation {
                 second,
                 first_points,
                 second_points,
-            } => write!(
-                f,
-                "boundary edges {first:?} {}-{} and {second:?} {}-{} cross",
+            } => format!(
+                "boundary edges {} {}-{} and {} {}-{} cross",
+                list(first),
                 pt(first_points[0]),
                 pt(first_points[1]),
+                list(second),
                 pt(second_points[0]),
                 pt(second_points[1])
             ),
@@ -294,9 +362,9 @@ impl fmt::Display for Violation {
                 vertex,
                 point,
                 winding,
-            } => write!(
-                f,
-                "fold at interior vertex {vertex} {}: its triangles wind {winding} times around it (angle sum {}°, not 360°)",
+            } => format!(
+                "fold at interior vertex {} {}: its triangles wind {winding} times around it (angle sum {}°, not 360°)",
+                m(*vertex),
                 pt(*point),
                 360 * winding
             ),
@@ -304,17 +372,16 @@ impl fmt::Display for Violation {
                 edge,
                 points,
                 covering,
-            } => write!(
-                f,
-                "overlap: just inside boundary edge {edge:?} {}-{} the mesh covers the plane {covering} times, not once",
+            } => format!(
+                "overlap: just inside boundary edge {} {}-{} the mesh covers the plane {covering} times, not once",
+                list(edge),
                 pt(points[0]),
                 pt(points[1])
             ),
             Violation::AreaMismatch {
                 triangles,
                 enclosed,
-            } => write!(
-                f,
+            } => format!(
                 "the triangles cover an area of {}, but the boundary loops enclose {}",
                 show(*triangles),
                 show(*enclosed)
@@ -324,30 +391,32 @@ impl fmt::Display for Violation {
                 first_vertices,
                 pinched_at,
             } => {
-                write!(
-                    f,
-                    "hole in the mesh: {loops} boundary loops (starting at vertices {first_vertices:?})"
-                )?;
+                let mut s = format!(
+                    "hole in the mesh: {loops} boundary loops (starting at vertices {})",
+                    list(first_vertices)
+                );
                 if !pinched_at.is_empty() {
-                    write!(f, ", touching at vertices {pinched_at:?},")?;
+                    s.push_str(&format!(", touching at vertices {},", list(pinched_at)));
                 }
-                write!(f, " where the mesh of a point set must be one disc")
+                s.push_str(" where the mesh of a point set must be one disc");
+                s
             }
-            Violation::MissingInputPoint { input, point } => {
-                write!(f, "input point {input} {} is not a mesh vertex", pt(*point))
+            Violation::MissingInputPoint { input: i, point } => {
+                format!("input point {} {} is not a mesh vertex", input(*i), pt(*point))
             }
             Violation::HoleCovered {
                 hole,
                 point,
                 triangle,
-            } => write!(
-                f,
-                "hole seed {hole} {} lies in triangle {triangle}: the hole is meshed",
-                pt(*point)
+            } => format!(
+                "hole seed {} {} lies in triangle {}: the hole is meshed",
+                input(*hole),
+                pt(*point),
+                m(*triangle)
             ),
-            Violation::BoundaryOffSegments { edge, points } => write!(
-                f,
-                "boundary edge {edge:?} {}-{} lies on no input segment: the mesh does not end at the segments",
+            Violation::BoundaryOffSegments { edge, points } => format!(
+                "boundary edge {} {}-{} lies on no input segment: the mesh does not end at the segments",
+                list(edge),
                 pt(points[0]),
                 pt(points[1])
             ),
@@ -357,22 +426,25 @@ impl fmt::Display for Violation {
                 points,
                 stuck_at,
             } => {
-                write!(
-                    f,
-                    "input segment {segment} {endpoints:?} {}-{} is not a chain of mesh edges",
+                let ends: Vec<u64> = endpoints.iter().map(|&e| numbering.input_index(e)).collect();
+                let mut s = format!(
+                    "input segment {} [{}, {}] {}-{} is not a chain of mesh edges",
+                    input(*segment),
+                    ends[0],
+                    ends[1],
                     pt(points[0]),
                     pt(points[1])
-                )?;
+                );
                 match stuck_at {
-                    Some((v, p)) => write!(f, ": the chain breaks off at vertex {v} {}", pt(*p)),
-                    None => write!(f, ": an endpoint is not a mesh vertex"),
+                    Some((at, p)) => {
+                        s.push_str(&format!(": the chain breaks off at vertex {} {}", v(*at), pt(*p)))
+                    }
+                    None => s.push_str(": an endpoint is not a mesh vertex"),
                 }
+                s
             }
         }
     }
-}
-
-impl Violation {
     /// A short snake_case name of the kind of violation, for tables and tests.
     pub fn kind(&self) -> &'static str {
         match self {

@@ -66,7 +66,8 @@ struct ReportArgs {
     /// Runs per case; times are the median, min and max.
     #[arg(long, default_value_t = 3)]
     runs: usize,
-    /// Add plane-10k, plane-100k and plane-1m and draw the scaling plot.
+    /// Add plane-1m to the scaling series (plane-1k to plane-100k are always run and plotted;
+    /// with --datasets, add plane-10k, plane-100k and plane-1m).
     #[arg(long)]
     scaling: bool,
     /// The reports directory (its generated files are replaced).

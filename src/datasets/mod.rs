@@ -30,6 +30,10 @@ pub const SMALL: &[&str] = &[
 /// Larger uniform point sets for scaling measurements, generated on demand, not committed.
 pub const SCALING: &[&str] = &["plane-10k", "plane-100k", "plane-1m"];
 
+/// The scaling datasets every report meshes (with plane-1k and plane-2k of [`SMALL`], the
+/// points of its scaling plot); `report --scaling` adds the rest of [`SCALING`].
+pub const SCALING_IN_REPORT: &[&str] = &["plane-10k", "plane-100k"];
+
 #[derive(Clone, Copy)]
 enum Kind {
     ClosePair,

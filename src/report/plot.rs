@@ -165,7 +165,11 @@ pub struct ScalingSeries {
     pub samples: Vec<(f64, f64, f64)>,
 }
 
-const SIZE_ANGLES: (u32, u32) = (1000, 560);
+/// Panels per row of an angle plot, and each panel's size in pixels.
+const ANGLE_COLUMNS: usize = 4;
+const ANGLE_PANEL: (u32, u32) = (420, 260);
+/// Height of the angle plot's title band.
+const ANGLE_TITLE: u32 = 44;
 const SIZE_SCALING: (u32, u32) = (1200, 520);
 
 /// Writes `<stem>.svg` and `<stem>.png` in `dir`: angle distributions of one dataset.
@@ -178,14 +182,15 @@ pub fn angle_plot(
     ensure_font()?;
     let svg = dir.join(format!("{stem}.svg"));
     let png = dir.join(format!("{stem}.png"));
+    let size = angle_plot_size(series.len());
     draw_angles(
-        SVGBackend::new(&svg, SIZE_ANGLES).into_drawing_area(),
+        SVGBackend::new(&svg, size).into_drawing_area(),
         title,
         series,
     )
     .map_err(|e| plot_error(&svg, e))?;
     draw_angles(
-        BitMapBackend::new(&png, SIZE_ANGLES).into_drawing_area(),
+        BitMapBackend::new(&png, size).into_drawing_area(),
         title,
         series,
     )
@@ -221,57 +226,84 @@ fn plot_error(path: &Path, e: impl std::fmt::Display) -> Error {
 type DrawResult<DB> =
     std::result::Result<(), DrawingAreaErrorKind<<DB as DrawingBackend>::ErrorType>>;
 
+/// The size of an angle plot of `n` meshers: a grid of [`ANGLE_COLUMNS`] panels per row.
+fn angle_plot_size(n: usize) -> (u32, u32) {
+    let columns = n.clamp(1, ANGLE_COLUMNS);
+    let rows = n.div_ceil(ANGLE_COLUMNS).max(1);
+    (
+        ANGLE_PANEL.0 * columns as u32,
+        ANGLE_TITLE + ANGLE_PANEL.1 * rows as u32,
+    )
+}
+
+/// Small multiples: one panel per mesher, all on the same axes (0°–180°, the same log scale),
+/// so that a curve is never hidden under another and panels compare at a glance. Each panel
+/// names its mesher and the range measured, and labels its promised bounds on their dashed
+/// lines.
 fn draw_angles<DB: DrawingBackend>(
     root: DrawingArea<DB, Shift>,
     title: &str,
     series: &[AngleSeries],
 ) -> DrawResult<DB> {
     root.fill(&WHITE)?;
+    let (band, body) = root.split_vertically(ANGLE_TITLE);
+    band.draw(&Text::new(
+        title.to_string(),
+        (12, 10),
+        (FONT, 22).into_font().color(&BLACK),
+    ))?;
     let fractions: Vec<Vec<f64>> = series.iter().map(AngleSeries::fractions).collect();
     // A log axis: the hexagon meshers put most angles in a few bins, and a linear axis would
     // flatten every refinement mesher's curve against zero. Empty bins sit on the floor.
     let (floor, y_top) = log_range(&fractions);
-    let mut chart = ChartBuilder::on(&root)
-        .caption(title, (FONT, 22))
-        .margin(12)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d(0f64..180f64, (floor..y_top).log_scale())?;
-    chart
-        .configure_mesh()
-        .x_desc("angle (degrees, 1° bins)")
-        .y_desc("fraction of all angles (log; empty bins at the bottom)")
-        .x_labels(19)
-        .x_label_formatter(&|x| format!("{x:.0}"))
-        .y_label_formatter(&|v| format!("{v:.0e}"))
-        .label_style((FONT, 14))
-        .axis_desc_style((FONT, 16))
-        .draw()?;
-    for (s, f) in series.iter().zip(&fractions) {
+    let columns = series.len().clamp(1, ANGLE_COLUMNS);
+    let rows = series.len().div_ceil(ANGLE_COLUMNS).max(1);
+    let panels = body.split_evenly((rows, columns));
+    for ((s, f), panel) in series.iter().zip(&fractions).zip(&panels) {
         let color = mesher_color(&s.mesher);
-        let points = curve_points(f, s.range, floor);
+        let caption = match s.range {
+            Some((lo, hi)) => format!("{}: {}–{}", s.mesher, short_degrees(lo), short_degrees(hi)),
+            None => s.mesher.clone(),
+        };
+        let mut chart = ChartBuilder::on(panel)
+            .caption(caption, (FONT, 16).into_font().color(&color))
+            .margin(8)
+            .x_label_area_size(30)
+            .y_label_area_size(48)
+            .build_cartesian_2d(0f64..180f64, (floor..y_top).log_scale())?;
         chart
-            .draw_series(LineSeries::new(points, color.stroke_width(2)))?
-            .label(legend_label(s))
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
-        for &b in &s.bounds {
+            .configure_mesh()
+            .x_desc("angle (°)")
+            .x_labels(7)
+            .y_labels(4)
+            .x_label_formatter(&|x| format!("{x:.0}"))
+            .y_label_formatter(&|v| format!("{v:.0e}"))
+            .label_style((FONT, 11))
+            .axis_desc_style((FONT, 12))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()?;
+        chart.draw_series(LineSeries::new(
+            curve_points(f, s.range, floor),
+            color.stroke_width(2),
+        ))?;
+        for (k, &b) in s.bounds.iter().enumerate() {
             chart.draw_series(DashedLineSeries::new(
                 vec![(b, floor), (b, y_top)],
                 6,
                 4,
-                color.stroke_width(1),
+                BLACK.mix(0.6).stroke_width(1),
             ))?;
+            // The label sits beside its line, inside the panel, staggered so that two bounds
+            // close together (30° and 43.9°) do not overlap.
+            let x = if b > 150.0 { b - 30.0 } else { b + 2.0 };
+            let y = y_top / 3f64.powi(k as i32 + 1);
+            chart.draw_series(std::iter::once(Text::new(
+                format!("bound {}", short_degrees(b)),
+                (x, y),
+                (FONT, 12).into_font().color(&BLACK),
+            )))?;
         }
     }
-    chart
-        .configure_series_labels()
-        .label_font((FONT, 14))
-        .background_style(WHITE.mix(0.85))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
     root.present()
 }
 
@@ -303,15 +335,6 @@ fn log_range(fractions: &[Vec<f64>]) -> (f64, f64) {
         return (1e-4, 1.0);
     }
     ((low / 2.0).max(1e-9), (peak * 2.0).min(1.0))
-}
-
-fn legend_label(s: &AngleSeries) -> String {
-    if s.bounds.is_empty() {
-        s.mesher.clone()
-    } else {
-        let b: Vec<String> = s.bounds.iter().map(|&b| short_degrees(b)).collect();
-        format!("{} (bounds {})", s.mesher, b.join(", "))
-    }
 }
 
 /// Degrees to at most four decimals, without trailing zeros: 30°, 43.8979°.
@@ -524,7 +547,7 @@ mod tests {
     }
 
     #[test]
-    fn angle_plot_writes_an_svg_with_legend_and_a_png() {
+    fn angle_plot_draws_a_panel_per_mesher_with_labelled_bounds_as_svg_and_png() {
         let dir = temp_dir("angles");
         let mut h = vec![0u64; 180];
         for (i, v) in h.iter_mut().enumerate().take(91).skip(43) {
@@ -546,8 +569,12 @@ mod tests {
         ];
         let files = angle_plot(&dir, "angles-test", "angles of test", &series).unwrap();
         let svg = std::fs::read_to_string(&files[0]).unwrap();
-        assert!(svg.contains("hex (bounds 43.8979°, 90°)"));
-        assert!(svg.contains("triangle (bounds 30°)"));
+        // One panel per mesher, each bound labelled on its line.
+        let text = |t: &str| svg.lines().any(|l| l.trim() == t);
+        assert!(text("hex") && text("triangle"), "{svg}");
+        assert!(svg.contains("bound 43.8979°"));
+        assert!(svg.contains("bound 90°"));
+        assert!(svg.contains("bound 30°"));
         let png = std::fs::read(&files[1]).unwrap();
         assert_eq!(&png[1..4], b"PNG");
         if std::env::var_os("HEXMESH_KEEP_PLOTS").is_none() {

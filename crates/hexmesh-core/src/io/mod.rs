@@ -6,6 +6,9 @@
 
 mod lines;
 pub mod msh;
+mod msh_read;
+mod read_any;
+mod scan;
 pub mod svg;
 pub mod triangle;
 pub mod vtk;
@@ -17,6 +20,9 @@ use std::str::FromStr;
 
 use crate::error::{Error, InputError, Result};
 use crate::mesh::{Pslg, TriMesh};
+
+pub use msh_read::{parse_msh, read_msh};
+pub use read_any::{read_any_mesh, LoadedMesh, MeshFormat};
 
 pub use msh::write_msh;
 pub use svg::{write_svg, SvgOptions};

@@ -1,0 +1,73 @@
+//! One entry point for `verify`: a mesh in any format hexmesh reads, chosen by the file's
+//! extension ([`read_any_mesh`]).
+
+use std::path::Path;
+
+use crate::error::{Error, Result};
+use crate::mesh::TriMesh;
+
+/// A mesh read from a file, with the numbers the file gives its vertices and triangles when
+/// they are not simply their positions (a Gmsh file's node and element tags).
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadedMesh {
+    /// The mesh, 0-based, vertices and triangles in the order the file lists them.
+    pub mesh: TriMesh,
+    /// The file's own tag of each vertex (`vertex_tags[i]` for vertex i), for Gmsh files.
+    pub vertex_tags: Option<Vec<u64>>,
+    /// The file's own tag of each triangle, for Gmsh files.
+    pub triangle_tags: Option<Vec<u64>>,
+}
+
+impl LoadedMesh {
+    /// A mesh whose vertices and triangles are named by their 0-based positions.
+    pub fn untagged(mesh: TriMesh) -> LoadedMesh {
+        LoadedMesh {
+            mesh,
+            vertex_tags: None,
+            triangle_tags: None,
+        }
+    }
+}
+
+/// The mesh formats [`read_any_mesh`] tells apart.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Triangle's PREFIX.node + PREFIX.ele.
+    Triangle,
+    /// Gmsh `.msh`, 4.1 or 2.2, ASCII or binary.
+    Msh,
+}
+
+impl MeshFormat {
+    /// The format of `path` by its extension (case-insensitive): `.msh`;
+    /// anything else is a Triangle prefix (with or without `.node`/`.ele`).
+    pub fn of(path: &Path) -> MeshFormat {
+        let extension = path
+            .extension()
+            .map(|e| e.to_string_lossy().to_ascii_lowercase());
+        match extension.as_deref() {
+            Some("msh") => MeshFormat::Msh,
+            _ => MeshFormat::Triangle,
+        }
+    }
+}
+
+/// Reads a triangle mesh from `path`, in the format its extension names ([`MeshFormat::of`]):
+/// Gmsh `.msh` ([`super::read_msh`]), or else Triangle's PREFIX.node + PREFIX.ele
+/// ([`super::read_mesh`]). Geometric defects are kept for `verify` to report; files that do
+/// not hold a mesh of 3-node triangles in the plane are errors naming the file and the line
+/// (or byte offset).
+pub fn read_any_mesh(path: &Path) -> Result<LoadedMesh> {
+    match MeshFormat::of(path) {
+        MeshFormat::Msh => super::read_msh(path),
+        MeshFormat::Triangle => super::read_mesh(path).map(LoadedMesh::untagged),
+    }
+}
+
+/// The whole file, or an I/O error naming it.
+pub(crate) fn read_bytes(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    })
+}

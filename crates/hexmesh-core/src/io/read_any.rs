@@ -36,10 +36,12 @@ pub enum MeshFormat {
     Triangle,
     /// Gmsh `.msh`, 4.1 or 2.2, ASCII or binary.
     Msh,
+    /// VTK legacy `.vtk`, ASCII or BINARY.
+    Vtk,
 }
 
 impl MeshFormat {
-    /// The format of `path` by its extension (case-insensitive): `.msh`;
+    /// The format of `path` by its extension (case-insensitive): `.msh`, `.vtk`;
     /// anything else is a Triangle prefix (with or without `.node`/`.ele`).
     pub fn of(path: &Path) -> MeshFormat {
         let extension = path
@@ -47,19 +49,21 @@ impl MeshFormat {
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
         match extension.as_deref() {
             Some("msh") => MeshFormat::Msh,
+            Some("vtk") => MeshFormat::Vtk,
             _ => MeshFormat::Triangle,
         }
     }
 }
 
 /// Reads a triangle mesh from `path`, in the format its extension names ([`MeshFormat::of`]):
-/// Gmsh `.msh` ([`super::read_msh`]), or else Triangle's PREFIX.node + PREFIX.ele
+/// Gmsh `.msh` ([`super::read_msh`]), VTK legacy `.vtk` ([`super::read_vtk`]), or else Triangle's PREFIX.node + PREFIX.ele
 /// ([`super::read_mesh`]). Geometric defects are kept for `verify` to report; files that do
 /// not hold a mesh of 3-node triangles in the plane are errors naming the file and the line
 /// (or byte offset).
 pub fn read_any_mesh(path: &Path) -> Result<LoadedMesh> {
     match MeshFormat::of(path) {
         MeshFormat::Msh => super::read_msh(path),
+        MeshFormat::Vtk => super::read_vtk(path).map(LoadedMesh::untagged),
         MeshFormat::Triangle => super::read_mesh(path).map(LoadedMesh::untagged),
     }
 }

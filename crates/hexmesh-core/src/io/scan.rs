@@ -157,6 +157,16 @@ impl<'a> Scan<'a> {
         Ok(value)
     }
 
+    /// Skips one line end (`\n` or `\r\n`) if one comes next, as after a binary block.
+    pub fn skip_newline(&mut self) {
+        let rest = &self.data[self.pos.min(self.data.len())..];
+        if rest.starts_with(b"\n") {
+            self.pos += 1;
+        } else if rest.starts_with(b"\r\n") {
+            self.pos += 2;
+        }
+    }
+
     /// Skips the rest of the current line.
     pub fn skip_line(&mut self) -> Result<()> {
         self.next_line().map(|_| ())
@@ -228,6 +238,14 @@ impl<'a> Scan<'a> {
 
     pub fn u64(&mut self, endian: Endian, what: &str) -> Result<u64> {
         Ok(u64::from_ne_bytes(ordered(self.bytes(8, what)?, endian)))
+    }
+
+    pub fn i64(&mut self, endian: Endian, what: &str) -> Result<i64> {
+        Ok(i64::from_ne_bytes(ordered(self.bytes(8, what)?, endian)))
+    }
+
+    pub fn f32(&mut self, endian: Endian, what: &str) -> Result<f32> {
+        Ok(f32::from_ne_bytes(ordered(self.bytes(4, what)?, endian)))
     }
 
     pub fn f64(&mut self, endian: Endian, what: &str) -> Result<f64> {

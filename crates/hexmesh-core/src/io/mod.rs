@@ -13,6 +13,8 @@ pub mod svg;
 pub mod triangle;
 pub mod vtk;
 mod vtk_read;
+mod vtu_data;
+mod vtu_read;
 
 use std::ffi::OsString;
 use std::fmt;
@@ -25,6 +27,7 @@ use crate::mesh::{Pslg, TriMesh};
 pub use msh_read::{parse_msh, read_msh};
 pub use read_any::{read_any_mesh, LoadedMesh, MeshFormat};
 pub use vtk_read::{parse_vtk, read_vtk};
+pub use vtu_read::{parse_vtu, read_vtu};
 
 pub use msh::write_msh;
 pub use svg::{write_svg, SvgOptions};

@@ -38,10 +38,12 @@ pub enum MeshFormat {
     Msh,
     /// VTK legacy `.vtk`, ASCII or BINARY.
     Vtk,
+    /// VTK XML `.vtu`: ASCII, base64 or appended data, plain or zlib-compressed.
+    Vtu,
 }
 
 impl MeshFormat {
-    /// The format of `path` by its extension (case-insensitive): `.msh`, `.vtk`;
+    /// The format of `path` by its extension (case-insensitive): `.msh`, `.vtk`, `.vtu`;
     /// anything else is a Triangle prefix (with or without `.node`/`.ele`).
     pub fn of(path: &Path) -> MeshFormat {
         let extension = path
@@ -50,13 +52,15 @@ impl MeshFormat {
         match extension.as_deref() {
             Some("msh") => MeshFormat::Msh,
             Some("vtk") => MeshFormat::Vtk,
+            Some("vtu") => MeshFormat::Vtu,
             _ => MeshFormat::Triangle,
         }
     }
 }
 
 /// Reads a triangle mesh from `path`, in the format its extension names ([`MeshFormat::of`]):
-/// Gmsh `.msh` ([`super::read_msh`]), VTK legacy `.vtk` ([`super::read_vtk`]), or else Triangle's PREFIX.node + PREFIX.ele
+/// Gmsh `.msh` ([`super::read_msh`]), VTK legacy `.vtk` ([`super::read_vtk`]), VTK XML
+/// `.vtu` ([`super::read_vtu`]), or else Triangle's PREFIX.node + PREFIX.ele
 /// ([`super::read_mesh`]). Geometric defects are kept for `verify` to report; files that do
 /// not hold a mesh of 3-node triangles in the plane are errors naming the file and the line
 /// (or byte offset).
@@ -64,6 +68,7 @@ pub fn read_any_mesh(path: &Path) -> Result<LoadedMesh> {
     match MeshFormat::of(path) {
         MeshFormat::Msh => super::read_msh(path),
         MeshFormat::Vtk => super::read_vtk(path).map(LoadedMesh::untagged),
+        MeshFormat::Vtu => super::read_vtu(path).map(LoadedMesh::untagged),
         MeshFormat::Triangle => super::read_mesh(path).map(LoadedMesh::untagged),
     }
 }

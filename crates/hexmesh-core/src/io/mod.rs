@@ -3,6 +3,9 @@
 //! VTK legacy and Gmsh 4.1 out for ParaView, Gmsh and meshio, and SVG pictures.
 //! The CLI and the harness use only the functions of this module; `triangle` keeps the
 //! file-level structs for bit-exact round trips.
+//!
+//! Meshes made elsewhere are read by [`read_any_mesh`]: Gmsh `.msh` 4.1 and 2.2
+//! ([`read_msh`]), VTK legacy `.vtk` ([`read_vtk`]) and VTK XML `.vtu` ([`read_vtu`]).
 
 mod lines;
 pub mod msh;

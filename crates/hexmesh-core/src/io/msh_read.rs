@@ -869,6 +869,41 @@ mod tests {
     }
 
     #[test]
+    fn every_truncation_and_byte_change_is_refused_or_read_without_panic() {
+        use crate::io::scan::refuses_without_panic;
+        let p = |b: &[u8]| parse(b);
+        let samples = [
+            SQUARE_41.as_bytes().to_vec(),
+            binary_22(2, &[30, 10, 20]),
+            binary_41_header()
+                .u64(1)
+                .u64(1)
+                .u64(4)
+                .u64(4)
+                .i32(2)
+                .i32(1)
+                .i32(0)
+                .u64(1)
+                .u64(4)
+                .f64(0.5)
+                .f64(0.25)
+                .f64(0.0)
+                .text("\n$EndNodes\n")
+                .0,
+        ];
+        for bytes in samples {
+            // Every cut before the closing $End line of the last section is refused.
+            let last = bytes.len()
+                - bytes
+                    .rsplit(|&b| b == b'$')
+                    .next()
+                    .map_or(0, |r| r.len() + 1);
+            let refused = refuses_without_panic(&bytes, p);
+            assert!(refused >= last, "{refused} of {last}");
+        }
+    }
+
+    #[test]
     fn other_versions_and_foreign_files_are_refused_by_name() {
         let e = message(b"$MeshFormat\n4 0 8\n$EndMeshFormat\n");
         assert!(e.starts_with("t.msh:2: MSH version 4 is not read"), "{e}");

@@ -276,6 +276,37 @@ pub(crate) fn find(haystack: &[u8], needle: &[u8]) -> Option<usize> {
     haystack.windows(needle.len()).position(|w| w == needle)
 }
 
+/// Runs `parse` on every truncation of `bytes` and on copies with one byte changed at every
+/// offset (to each of a few values), for the readers' tests: each must return, never panic.
+/// Returns how many of the truncations were refused; a truncation may still read (a file cut
+/// after its last section).
+#[cfg(test)]
+pub(crate) fn refuses_without_panic<T>(bytes: &[u8], parse: impl Fn(&[u8]) -> Result<T>) -> usize {
+    let mut refused = 0;
+    for end in 0..bytes.len() {
+        refused += usize::from(parse(&bytes[..end]).is_err());
+    }
+    let mut copy = bytes.to_vec();
+    for at in 0..bytes.len() {
+        for value in [
+            b'0',
+            b'9',
+            b'-',
+            b' ',
+            b'\n',
+            b'<',
+            0x00,
+            0xff,
+            bytes[at] ^ 0x80,
+        ] {
+            copy[at] = value;
+            let _ = parse(&copy);
+        }
+        copy[at] = bytes[at];
+    }
+    refused
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -718,6 +718,18 @@ mod tests {
     }
 
     #[test]
+    fn every_truncation_and_byte_change_is_refused_or_read_without_panic() {
+        use crate::io::scan::refuses_without_panic;
+        let p = |b: &[u8]| parse(b);
+        let binary = binary_51(&[[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], &[[0, 1, 2]]);
+        // Cut before its last cell type, the binary file is refused.
+        assert!(refuses_without_panic(&binary, p) >= binary.len() - 5);
+        let classic = CLASSIC.as_bytes();
+        let data = CLASSIC.find("CELL_DATA").expect("cell data");
+        assert!(refuses_without_panic(classic, p) >= data - 2);
+    }
+
+    #[test]
     fn truncated_files_are_refused_with_line_or_byte_offset() {
         let cut = &CLASSIC[..CLASSIC.find("CELL_TYPES").expect("types")];
         assert_eq!(

@@ -219,6 +219,14 @@ impl<'a> Document<'a> {
                 "not a VTK XML file: no <VTKFile> element",
             ));
         }
+        if doc.appended.is_none() {
+            if let Some(open) = stack.last() {
+                return Err(doc.error(
+                    data.len().saturating_sub(1),
+                    format!("the file ends inside <{open}>: it is cut short"),
+                ));
+            }
+        }
         Ok(doc)
     }
 
@@ -870,9 +878,38 @@ mod tests {
     }
 
     #[test]
+    fn every_truncation_and_byte_change_is_refused_or_read_without_panic() {
+        use crate::io::scan::refuses_without_panic;
+        let p = |b: &[u8]| parse(b);
+        let (arrays, section) = appended(true, false);
+        let base64 = document("", arrays, &section);
+        let (arrays, section) = appended(false, true);
+        let raw = document("byte_order=\"BigEndian\"", arrays, &section);
+        let find = |bytes: &[u8], what: &str| {
+            crate::io::scan::find(bytes, what.as_bytes()).expect("marker")
+        };
+        // Without the vtu-zlib feature, meshio's file is refused whole.
+        let zlib = if ZLIB { MESHIO_ZLIB } else { ASCII };
+        for bytes in [ASCII.as_bytes(), zlib.as_bytes()] {
+            // Every cut before the end of </VTKFile> is refused, and no other.
+            let end = find(bytes, "</VTKFile>") + "</VTKFile>".len();
+            assert_eq!(refuses_without_panic(bytes, p), end);
+        }
+        for (bytes, padded) in [(&base64, true), (&raw, false)] {
+            // Every cut before the end of the appended data is refused, except in base64 the
+            // one that drops only the final '=' (a group without padding still decodes).
+            let end = find(bytes, "\n</AppendedData>");
+            refuses_without_panic(bytes, p);
+            let read: Vec<usize> = (0..end).filter(|&k| parse(&bytes[..k]).is_ok()).collect();
+            let expected = if padded { vec![end - 1] } else { vec![] };
+            assert_eq!(read, expected);
+        }
+    }
+
+    #[test]
     fn truncated_data_are_refused_with_the_array_and_offset() {
         if ZLIB {
-            let cut = &MESHIO_ZLIB[..MESHIO_ZLIB.find("eJxjYMAH").expect("data")];
+            let cut = MESHIO_ZLIB.replace("eJxjYMAHPtjjFyckz8AAALNMBL0=", "");
             assert_eq!(
                 message(cut.as_bytes()),
                 "t.vtu:7: DataArray 'Points': the base64 data end inside a compressed block, \

@@ -183,6 +183,7 @@ struct VerifyArgs {
     /// triangles refused. Vertices and triangles are numbered from 0 in the order the file
     /// lists them; for a .msh file, the text output ends with the node and element tags of
     /// those it names.
+    #[arg(value_name = "MESH")]
     prefix: PathBuf,
     /// The input the mesh was made from (.node/.poly, or a dataset or PSLG example name): every
     /// input point must be a vertex, and every segment a chain of edges where the bounds ask

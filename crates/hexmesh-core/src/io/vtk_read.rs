@@ -484,7 +484,12 @@ impl<'a> Vtk<'a> {
 
     /// `NAME type` and `n` integers (the 5.x OFFSETS and CONNECTIVITY arrays).
     fn typed_array(&mut self, name: &str, n: usize) -> Result<Vec<i64>> {
-        let (at, line) = self.scan.expect_line(name)?;
+        let (mut at, mut line) = self.scan.expect_line(name)?;
+        // VTK 9 may follow an array with a METADATA block.
+        while line.eq_ignore_ascii_case("METADATA") {
+            self.skip_metadata()?;
+            (at, line) = self.scan.expect_line(name)?;
+        }
         let fields: Vec<&str> = line.split_whitespace().collect();
         match fields.as_slice() {
             [found, ty] if found.eq_ignore_ascii_case(name) => {
@@ -618,6 +623,13 @@ mod tests {
         let mesh = parse(text.as_bytes()).expect("5.1");
         assert_eq!(mesh.vertices, vec![[0.0, 0.0], [2.0, 0.0], [0.0, 3.0]]);
         assert_eq!(mesh.triangles, vec![[0, 1, 2]]);
+        // VTK 9 puts METADATA blocks (ended by a blank line) after arrays.
+        let metadata =
+            "METADATA\nINFORMATION 1\nNAME L2_NORM_RANGE LOCATION vtkDataArray\nDATA 2 0 3\n\n";
+        let text = text
+            .replace("CELLS 2 3", &format!("{metadata}CELLS 2 3"))
+            .replace("CONNECTIVITY", &format!("{metadata}CONNECTIVITY"));
+        assert_eq!(parse(text.as_bytes()).expect("metadata"), mesh);
     }
 
     /// A BINARY 5.1 file of `points` (big-endian doubles) and one triangle per triple.

@@ -813,6 +813,48 @@ mod tests {
         (attributes.try_into().expect("four"), section)
     }
 
+    /// With a UInt64 header, each array zlib-compressed in blocks of 16 bytes (header and
+    /// data encoded apart in base64), as ParaView may write them.
+    #[cfg(feature = "vtu-zlib")]
+    #[test]
+    fn appended_zlib_blocks_with_uint64_headers_in_raw_and_base64() {
+        let (xyz, arrays) = parts();
+        for base64 in [false, true] {
+            let mut data = Vec::new();
+            let mut attributes = Vec::new();
+            for array in &arrays {
+                let chunks: Vec<Vec<u8>> = array
+                    .chunks(16)
+                    .map(|c| miniz_oxide::deflate::compress_to_vec_zlib(c, 6))
+                    .collect();
+                let last = (array.len() % 16) as u64;
+                let mut header = Vec::new();
+                for w in [chunks.len() as u64, 16, last]
+                    .into_iter()
+                    .chain(chunks.iter().map(|c| c.len() as u64))
+                {
+                    header.extend_from_slice(&w.to_le_bytes());
+                }
+                let body = chunks.concat();
+                attributes.push(format!("format=\"appended\" offset=\"{}\"/>", data.len()));
+                if base64 {
+                    data.extend_from_slice(encode(&header).as_bytes());
+                    data.extend_from_slice(encode(&body).as_bytes());
+                } else {
+                    data.extend_from_slice(&header);
+                    data.extend_from_slice(&body);
+                }
+            }
+            let encoding = if base64 { "base64" } else { "raw" };
+            let mut section = format!("<AppendedData encoding=\"{encoding}\">_").into_bytes();
+            section.extend_from_slice(&data);
+            section.extend_from_slice(b"</AppendedData>\n");
+            let file = "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\"";
+            let doc = document(file, attributes.try_into().expect("four"), &section);
+            check_bits(&parse(&doc).expect("compressed"), &xyz);
+        }
+    }
+
     #[test]
     fn appended_raw_and_base64_in_either_byte_order() {
         let (xyz, ..) = parts();

@@ -26,6 +26,9 @@ const MAX_PREALLOCATION: usize = 1 << 16;
 /// VTK's linear triangle.
 const VTK_TRIANGLE: i64 = 5;
 
+/// Integers read from the file, with the offset of each, for messages.
+type Ints = (Vec<i64>, Vec<usize>);
+
 /// Reads a VTK legacy `.vtk` file; see the module docs.
 pub fn read_vtk(path: &Path) -> Result<TriMesh> {
     parse_vtk(path, &super::read_any::read_bytes(path)?)
@@ -35,9 +38,9 @@ pub fn read_vtk(path: &Path) -> Result<TriMesh> {
 pub fn parse_vtk(path: &Path, data: &[u8]) -> Result<TriMesh> {
     let mut vtk = Vtk::start(Scan::new(path, data))?;
     let mut points: Option<Vec<Point>> = None;
-    let mut cells: Option<(usize, Cells)> = None;
-    let mut types: Option<(usize, Vec<i64>)> = None;
-    let mut polygons: Vec<(usize, Cells)> = Vec::new();
+    let mut cells: Option<Cells> = None;
+    let mut types: Option<(usize, Ints)> = None;
+    let mut polygons: Vec<Cells> = Vec::new();
     while let Some((at, line)) = vtk.scan.next_nonblank_line()? {
         let fields: Vec<&str> = line.split_whitespace().collect();
         let keyword = fields[0].to_ascii_uppercase();
@@ -54,11 +57,11 @@ pub fn parse_vtk(path: &Path, data: &[u8]) -> Result<TriMesh> {
                     "CELLS" if vtk.polydata => {
                         return Err(vtk.scan.error_at(at, "CELLS in a POLYDATA dataset"))
                     }
-                    "CELLS" => cells = Some((at, read)),
+                    "CELLS" => cells = Some(read),
                     "POLYGONS" if !vtk.polydata => {
                         return Err(vtk.scan.error_at(at, "POLYGONS in an UNSTRUCTURED_GRID"))
                     }
-                    "POLYGONS" => polygons.push((at, read)),
+                    "POLYGONS" => polygons.push(read),
                     _ => {}
                 }
             }
@@ -91,12 +94,12 @@ pub fn parse_vtk(path: &Path, data: &[u8]) -> Result<TriMesh> {
     let n = points.len();
     let mut triangles = Vec::new();
     if vtk.polydata {
-        for (at, cells) in &polygons {
+        for cells in &polygons {
             for k in 0..cells.len() {
                 let corners = cells.cell(k);
                 if corners.len() != 3 {
-                    return Err(vtk.scan.error_at(
-                        *at,
+                    return Err(vtk.error(
+                        cells.at[k],
                         format!(
                             "polygon {k} of this section has {} points: verify checks meshes \
                              of triangles",
@@ -104,19 +107,19 @@ pub fn parse_vtk(path: &Path, data: &[u8]) -> Result<TriMesh> {
                         ),
                     ));
                 }
-                triangles.push(vtk.triangle(*at, "polygon", k, corners, n)?);
+                triangles.push(vtk.triangle(cells.at[k], "polygon", k, corners, n)?);
             }
         }
     } else {
-        let Some((cells_at, cells)) = cells else {
+        let Some(cells) = cells else {
             return Err(Error::parse(path, 0, "the file has no CELLS section"));
         };
-        let Some((types_at, types)) = types else {
+        let Some((types_line, (types, types_at))) = types else {
             return Err(Error::parse(path, 0, "the file has no CELL_TYPES section"));
         };
         if types.len() != cells.len() {
             return Err(vtk.scan.error_at(
-                types_at,
+                types_line,
                 format!(
                     "CELL_TYPES lists {} cells, but CELLS has {}",
                     types.len(),
@@ -129,20 +132,20 @@ pub fn parse_vtk(path: &Path, data: &[u8]) -> Result<TriMesh> {
                 VTK_TRIANGLE => {
                     let corners = cells.cell(k);
                     if corners.len() != 3 {
-                        return Err(vtk.scan.error_at(
-                            cells_at,
+                        return Err(vtk.error(
+                            cells.at[k],
                             format!(
                                 "cell {k} is a triangle (type 5) with {} points",
                                 corners.len()
                             ),
                         ));
                     }
-                    triangles.push(vtk.triangle(cells_at, "cell", k, corners, n)?);
+                    triangles.push(vtk.triangle(cells.at[k], "cell", k, corners, n)?);
                 }
                 1..=4 => {}
                 other => {
-                    return Err(vtk.scan.error_at(
-                        types_at,
+                    return Err(vtk.error(
+                        types_at[k],
                         format!(
                             "cell {k} has type {other} ({}): verify checks meshes of linear \
                              triangles (type 5); vertices and lines are skipped",
@@ -179,6 +182,8 @@ struct Cells {
     /// `offsets[k]..offsets[k + 1]` are cell k's points; `offsets[0]` is 0.
     offsets: Vec<usize>,
     connectivity: Vec<i64>,
+    /// Where each cell is in the file, for messages.
+    at: Vec<usize>,
 }
 
 impl Cells {
@@ -364,8 +369,9 @@ impl<'a> Vtk<'a> {
         self.scan.pos()
     }
 
-    /// `n` integers of VTK type `ty` (BINARY: big-endian).
-    fn ints(&mut self, n: usize, ty: &str, what: &str) -> Result<Vec<i64>> {
+    /// `n` integers of VTK type `ty` (BINARY: big-endian), with the offset of each in the
+    /// file, for messages.
+    fn ints(&mut self, n: usize, ty: &str, what: &str) -> Result<Ints> {
         let size = match ty.to_ascii_lowercase().as_str() {
             "int" | "unsigned_int" | "vtktypeint32" | "vtktypeuint32" => 4,
             "long" | "unsigned_long" | "vtktypeint64" | "vtktypeuint64" | "vtkidtype" => 8,
@@ -380,7 +386,9 @@ impl<'a> Vtk<'a> {
             self.scan.require(n, size, what)?;
         }
         let mut out = Vec::with_capacity(n.min(MAX_PREALLOCATION));
+        let mut positions = Vec::with_capacity(n.min(MAX_PREALLOCATION));
         for _ in 0..n {
+            positions.push(self.mark());
             out.push(if !self.binary {
                 let (at, token) = self.scan.token(what)?;
                 token.parse().map_err(|_| {
@@ -394,7 +402,7 @@ impl<'a> Vtk<'a> {
             });
         }
         self.end_binary()?;
-        Ok(out)
+        Ok((out, positions))
     }
 
     /// `CELLS`, `POLYGONS`, `VERTICES` or `LINES` and its data, in either layout.
@@ -409,8 +417,8 @@ impl<'a> Vtk<'a> {
         let n = self.header_count(at, &fields[..2], 2, &layout)?;
         let size = self.header_count(at, &[fields[0], fields[2]], 2, &layout)?;
         if self.offsets_layout {
-            let offsets = self.typed_array("OFFSETS", n)?;
-            let connectivity = self.typed_array("CONNECTIVITY", size)?;
+            let (offsets, offsets_at) = self.typed_array("OFFSETS", n)?;
+            let (connectivity, connectivity_at) = self.typed_array("CONNECTIVITY", size)?;
             let mut checked = Vec::with_capacity(offsets.len().min(MAX_PREALLOCATION));
             for (k, &o) in offsets.iter().enumerate() {
                 let ok = usize::try_from(o)
@@ -419,8 +427,8 @@ impl<'a> Vtk<'a> {
                 match ok {
                     Some(o) if k > 0 || o == 0 => checked.push(o),
                     _ => {
-                        return Err(self.scan.error_at(
-                            at,
+                        return Err(self.error(
+                            offsets_at[k],
                             format!(
                                 "offset {k} is {o}: offsets start at 0 and rise to the {} \
                                  connectivity entries",
@@ -438,16 +446,28 @@ impl<'a> Vtk<'a> {
             if checked.is_empty() {
                 checked.push(0);
             }
+            // Each cell is named at its first corner, or at its offset when it has none.
+            let at = (0..checked.len() - 1)
+                .map(|k| {
+                    connectivity_at
+                        .get(checked[k])
+                        .filter(|_| checked[k] < checked[k + 1])
+                        .copied()
+                        .unwrap_or(offsets_at[k + 1])
+                })
+                .collect();
             return Ok(Cells {
                 offsets: checked,
                 connectivity,
+                at,
             });
         }
         let data_at = self.mark();
-        let list = self.ints(size, "int", "a cell entry")?;
+        let (list, list_at) = self.ints(size, "int", "a cell entry")?;
         let mut cells = Cells {
             offsets: vec![0],
             connectivity: Vec::with_capacity(list.len()),
+            at: Vec::with_capacity(n.min(MAX_PREALLOCATION)),
         };
         let mut i = 0;
         for k in 0..n {
@@ -457,7 +477,7 @@ impl<'a> Vtk<'a> {
                 .filter(|&c| c < list.len() - i)
                 .ok_or_else(|| {
                     self.error(
-                        data_at,
+                        list_at.get(i).copied().unwrap_or(data_at),
                         format!(
                             "cell {k}: the {size} entries of {} end inside it",
                             fields[0]
@@ -468,6 +488,7 @@ impl<'a> Vtk<'a> {
                 .connectivity
                 .extend_from_slice(&list[i + 1..i + 1 + count]);
             cells.offsets.push(cells.connectivity.len());
+            cells.at.push(list_at[i]);
             i += 1 + count;
         }
         if i != list.len() {
@@ -483,7 +504,7 @@ impl<'a> Vtk<'a> {
     }
 
     /// `NAME type` and `n` integers (the 5.x OFFSETS and CONNECTIVITY arrays).
-    fn typed_array(&mut self, name: &str, n: usize) -> Result<Vec<i64>> {
+    fn typed_array(&mut self, name: &str, n: usize) -> Result<Ints> {
         let (mut at, mut line) = self.scan.expect_line(name)?;
         // VTK 9 may follow an array with a METADATA block.
         while line.eq_ignore_ascii_case("METADATA") {
@@ -573,7 +594,7 @@ impl<'a> Vtk<'a> {
                 .ok()
                 .filter(|&v| (v as usize) < n)
                 .ok_or_else(|| {
-                    self.scan.error_at(
+                    self.error(
                         at,
                         format!(
                             "{what} {k} names point {c}, but there are {n} points numbered from 0"
@@ -705,7 +726,7 @@ mod tests {
         );
         assert_eq!(
             message(quad.as_bytes()),
-            "t.vtk:9: polygon 0 of this section has 4 points: verify checks meshes of triangles"
+            "t.vtk:10: polygon 0 of this section has 4 points: verify checks meshes of triangles"
         );
     }
 
@@ -714,7 +735,7 @@ mod tests {
         let text = CLASSIC.replace("CELL_TYPES 4\n1\n5\n3\n5\n", "CELL_TYPES 4\n1\n5\n3\n9\n");
         assert_eq!(
             message(text.as_bytes()),
-            "t.vtk:17: cell 3 has type 9 (a quadrangle): verify checks meshes of linear \
+            "t.vtk:21: cell 3 has type 9 (a quadrangle): verify checks meshes of linear \
              triangles (type 5); vertices and lines are skipped"
         );
         let text = CLASSIC.replace("0.1 1 0\n", "0.1 1 1e-9\n");
@@ -725,7 +746,7 @@ mod tests {
         let text = CLASSIC.replace("3 0 2 3\n", "3 0 2 4\n");
         assert_eq!(
             message(text.as_bytes()),
-            "t.vtk:12: cell 3 names point 4, but there are 4 points numbered from 0"
+            "t.vtk:16: cell 3 names point 4, but there are 4 points numbered from 0"
         );
     }
 

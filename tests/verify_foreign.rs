@@ -1,7 +1,7 @@
 //! `hexmesh verify` on meshes made elsewhere: Gmsh's `.msh` (4.1 binary, 2.2 ASCII, and the
-//! other two encodings) and meshio's `.vtu` (binary, zlib-compressed) and `.vtk` must get the
-//! same verdict, the same counts and the same angles as the same mesh written as Triangle's
-//! `.node`/`.ele` by the library: the whole `verify --json` output is compared.
+//! other two encodings) and meshio's `.vtu` (binary, zlib-compressed), `.vtk` and `.msh` must
+//! get the same verdict, the same counts and the same angles as the same mesh written as
+//! Triangle's `.node`/`.ele` by the library: the whole `verify --json` output is compared.
 //!
 //! Gmsh comes from PATH (`make deps` installs Debian's `gmsh`); without it those tests print a
 //! note and pass. Python with meshio comes from HEXMESH_PYTHON (set by the Makefile), else the
@@ -244,8 +244,9 @@ fn python() -> PathBuf {
 }
 
 /// A `hex` mesh of 40 seeded points with awkward coordinates, written as Gmsh 4.1 by the
-/// library; meshio reads that and writes `.vtu` (its default: binary, zlib) and `.vtk`
-/// (binary and ASCII). Each must verify as the `.node`/`.ele` of what it holds.
+/// library; meshio reads that and writes `.vtu` (its default: binary, zlib), `.vtk` (5.1
+/// binary and ASCII, 4.2 binary) and Gmsh `.msh` (4.1 and 2.2, binary). Each must hold the
+/// mesh bit for bit and verify as the `.node`/`.ele` of what it holds.
 #[test]
 fn meshio_vtu_and_vtk_files_verify_as_their_node_ele_copy() {
     let dir = scratch("meshio");
@@ -268,7 +269,11 @@ fn meshio_vtu_and_vtk_files_verify_as_their_node_ele_copy() {
                   m = meshio.read(sys.argv[1])\n\
                   meshio.write(sys.argv[2] + '.vtu', m)\n\
                   meshio.write(sys.argv[2] + '.vtk', m)\n\
-                  meshio.write(sys.argv[2] + '-ascii.vtk', m, binary=False)\n";
+                  meshio.write(sys.argv[2] + '-ascii.vtk', m, binary=False)\n\
+                  meshio.write(sys.argv[2] + '-42.vtk', m, file_format='vtk42')\n\
+                  t = meshio.Mesh(m.points, [c for c in m.cells if c.type == 'triangle'])\n\
+                  meshio.write(sys.argv[2] + '-41.msh', t, file_format='gmsh')\n\
+                  meshio.write(sys.argv[2] + '-22.msh', t, file_format='gmsh22')\n";
     let out = Command::new(python())
         .args(["-c", script])
         .arg(prefix.with_extension("msh"))
@@ -282,7 +287,15 @@ fn meshio_vtu_and_vtk_files_verify_as_their_node_ele_copy() {
     );
     let vtu = std::fs::read_to_string(dir.join("meshio.vtu")).expect("meshio wrote .vtu");
     assert!(vtu.contains("vtkZLibDataCompressor"), "not compressed");
-    for name in ["meshio.vtu", "meshio.vtk", "meshio-ascii.vtk"] {
+    let names = [
+        "meshio.vtu",
+        "meshio.vtk",
+        "meshio-ascii.vtk",
+        "meshio-42.vtk",
+        "meshio-41.msh",
+        "meshio-22.msh",
+    ];
+    for name in names {
         let path = dir.join(name);
         let read = read_any_mesh(&path).unwrap_or_else(|e| panic!("{e}"));
         // Bit for bit the mesh hexmesh made.

@@ -4,9 +4,9 @@ CARGO ?= cargo
 VENV := .venv
 PYTHON := $(VENV)/bin/python
 
-.PHONY: deps cxx python cgal fonts venv build report test lint bench fuzz clean
+.PHONY: deps cxx python cgal gmsh fonts venv build report test lint bench fuzz clean
 
-deps: cxx python cgal fonts venv
+deps: cxx python cgal gmsh fonts venv
 
 # A C++ compiler for the CGAL shim (cxx-build); a Rust toolchain brings only a C linker.
 cxx:
@@ -25,6 +25,12 @@ cgal:
 	@dpkg -s libcgal-dev >/dev/null 2>&1 || { \
 	  echo "installing libcgal-dev"; \
 	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq libcgal-dev; }
+
+# Gmsh (4.8 on Debian), which tests/verify_foreign.rs uses to make .msh meshes for `verify`.
+gmsh:
+	@dpkg -s gmsh >/dev/null 2>&1 || { \
+	  echo "installing gmsh"; \
+	  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq gmsh; }
 
 # A font for the text in PNG plots.
 fonts:

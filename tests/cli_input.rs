@@ -86,7 +86,7 @@ fn an_unknown_mesher_or_format_is_a_usage_error() {
         &["mesh", "close-pair", "--mesher", "nope", "-o", "/tmp/x"],
         "nope",
     );
-    assert_refused(&["verify"], "PREFIX");
+    assert_refused(&["verify"], "<MESH>");
 }
 
 #[test]

@@ -40,7 +40,8 @@ enum Command {
     Meshers,
     /// Mesh a .node/.poly file (or a dataset by name) with one mesher.
     Mesh(MeshArgs),
-    /// Check a mesh (PREFIX.node + PREFIX.ele): validity, and with --bounds a mesher's promises.
+    /// Check a mesh (Triangle's PREFIX.node + PREFIX.ele, Gmsh .msh, VTK .vtk or .vtu):
+    /// validity, and with --bounds a mesher's promises.
     Verify(VerifyArgs),
     /// The paper's protocol: raise the requested minimum angle from 20° by --step until the
     /// mesher fails; print the last good angle, its triangle count and time.
@@ -175,7 +176,16 @@ struct MeshArgs {
 
 #[derive(Args)]
 struct VerifyArgs {
-    /// The mesh: PREFIX.node and PREFIX.ele.
+    /// The mesh, chosen by extension: FILE.msh (Gmsh MSH 4.1 or 2.2, ASCII or binary),
+    /// FILE.vtk (VTK legacy UNSTRUCTURED_GRID or POLYDATA, ASCII or BINARY), FILE.vtu (VTK
+    /// XML: ascii, base64 or appended data, plain or zlib-compressed, as meshio writes it),
+    /// or else PREFIX for Triangle's PREFIX.node and PREFIX.ele. Only 3-node triangles in
+    /// the plane z = 0 are read: points and lines are skipped, quadrangles and higher-order
+    /// triangles refused. Messages number vertices and triangles in the order the file lists
+    /// them, from the .node file's first index, from 1 for .msh (the text output then ends
+    /// with the node and element tags of those it names), from 0 for VTK (its point and cell
+    /// ids).
+    #[arg(value_name = "MESH")]
     prefix: PathBuf,
     /// The input the mesh was made from (.node/.poly, or a dataset or PSLG example name): every
     /// input point must be a vertex, and every segment a chain of edges where the bounds ask
@@ -445,10 +455,11 @@ fn verify_name(bounds: &Bounds) -> String {
 }
 
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {
-    let (mesh, mesh_base) = crate::io::read_mesh_numbered(&args.prefix)?;
+    let loaded = crate::io::read_any_mesh(&args.prefix)?;
+    let mesh = &loaded.mesh;
     let input = args.input.as_deref().map(load_input_numbered).transpose()?;
     let numbering = Numbering {
-        mesh: mesh_base,
+        mesh: loaded.first_index,
         input: input.as_ref().map_or(1, |(_, base)| *base),
     };
     let input = input.map(|(pslg, _)| pslg);
@@ -458,18 +469,88 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
         .map(crate::registry::bounds)
         .transpose()?;
     let verdict =
-        crate::quality::verdict(&mesh, input.as_ref(), bounds.as_ref()).numbered(numbering);
+        crate::quality::verdict(mesh, input.as_ref(), bounds.as_ref()).numbered(numbering);
     if args.json {
         let json = serde_json::to_string_pretty(&verdict)
             .map_err(|e| Error::Usage(format!("cannot render the verdict as JSON: {e}")))?;
         println!("{json}");
     } else {
         print!("{verdict}");
+        if let Some(note) = tag_note(&args.prefix, &loaded, &verdict) {
+            println!("{note}");
+        }
     }
     Ok(if verdict.passed() {
         ExitCode::SUCCESS
     } else {
         ExitCode::from(1)
+    })
+}
+
+/// For a file with its own node and element tags (Gmsh), the tags of the vertices and
+/// triangles the verdict names by their positions (numbered from the file's first index);
+/// `None` when it names none.
+fn tag_note(
+    path: &std::path::Path,
+    loaded: &crate::io::LoadedMesh,
+    verdict: &crate::quality::Verdict,
+) -> Option<String> {
+    const SHOWN: usize = 20;
+    let mut vertices: Vec<usize> = Vec::new();
+    let mut triangles: Vec<usize> = Vec::new();
+    for violation in &verdict.violations {
+        let (v, t) = violation.named();
+        vertices.extend(v);
+        triangles.extend(t);
+    }
+    triangles.extend(
+        verdict
+            .checks
+            .iter()
+            .filter_map(|c| c.worst.map(|w| w.triangle)),
+    );
+    let list = |named: &mut Vec<usize>, tags: Option<&Vec<u64>>, what: &str, tag: &str| {
+        let tags = tags?;
+        named.sort_unstable();
+        named.dedup();
+        let shown: Vec<String> = named
+            .iter()
+            .filter_map(|&i| {
+                let numbered = i as u64 + u64::from(loaded.first_index);
+                tags.get(i)
+                    .map(|t| format!("{what} {numbered} is {tag} {t}"))
+            })
+            .take(SHOWN)
+            .collect();
+        let more = named.len().saturating_sub(SHOWN);
+        (!shown.is_empty()).then(|| {
+            let tail = if more > 0 {
+                format!(", and {more} more")
+            } else {
+                String::new()
+            };
+            format!("{}{tail}", shown.join(", "))
+        })
+    };
+    let parts: Vec<String> = [
+        list(&mut vertices, loaded.vertex_tags.as_ref(), "vertex", "node"),
+        list(
+            &mut triangles,
+            loaded.triangle_tags.as_ref(),
+            "triangle",
+            "element",
+        ),
+    ]
+    .into_iter()
+    .flatten()
+    .collect();
+    (!parts.is_empty()).then(|| {
+        format!(
+            "vertices and triangles above are numbered from {} in file order; in {}: {}",
+            loaded.first_index,
+            path.display(),
+            parts.join("; ")
+        )
     })
 }
 

@@ -60,7 +60,8 @@
 //!
 //! # Files
 //!
-//! [`io`] reads Triangle's .node/.poly files and writes .node/.ele, VTK, Gmsh .msh and SVG.
+//! [`io`] reads Triangle's .node/.poly files and writes .node/.ele, VTK, Gmsh .msh and SVG;
+//! [`io::read_any_mesh`] reads a triangle mesh from Gmsh .msh, VTK .vtk/.vtu or .node/.ele.
 //!
 //! # Layers
 //!

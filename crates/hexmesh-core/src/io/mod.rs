@@ -3,12 +3,21 @@
 //! VTK legacy and Gmsh 4.1 out for ParaView, Gmsh and meshio, and SVG pictures.
 //! The CLI and the harness use only the functions of this module; `triangle` keeps the
 //! file-level structs for bit-exact round trips.
+//!
+//! Meshes made elsewhere are read by [`read_any_mesh`]: Gmsh `.msh` 4.1 and 2.2
+//! ([`read_msh`]), VTK legacy `.vtk` ([`read_vtk`]) and VTK XML `.vtu` ([`read_vtu`]).
 
 mod lines;
 pub mod msh;
+mod msh_read;
+mod read_any;
+mod scan;
 pub mod svg;
 pub mod triangle;
 pub mod vtk;
+mod vtk_read;
+mod vtu_data;
+mod vtu_read;
 
 use std::ffi::OsString;
 use std::fmt;
@@ -17,6 +26,11 @@ use std::str::FromStr;
 
 use crate::error::{Error, InputError, Result};
 use crate::mesh::{Pslg, TriMesh};
+
+pub use msh_read::{parse_msh, read_msh};
+pub use read_any::{read_any_mesh, LoadedMesh, MeshFormat};
+pub use vtk_read::{parse_vtk, read_vtk};
+pub use vtu_read::{parse_vtu, read_vtu};
 
 pub use msh::write_msh;
 pub use svg::{write_svg, SvgOptions};

@@ -469,4 +469,53 @@ impl Violation {
             Violation::SegmentNotConforming { .. } => "segment_not_conforming",
         }
     }
+
+    /// The mesh vertices and mesh triangles (0-based) the message names, in the order it
+    /// names them, so that a caller can give them the numbers a file uses for them (a Gmsh
+    /// file's node and element tags). Input points, segments and holes are not included.
+    pub fn named(&self) -> (Vec<usize>, Vec<usize>) {
+        let v = |i: &u32| *i as usize;
+        match self {
+            Violation::NoTriangles { .. }
+            | Violation::AreaMismatch { .. }
+            | Violation::MissingInputPoint { .. } => (vec![], vec![]),
+            Violation::IndexOutOfRange { triangle, .. } => (vec![], vec![*triangle]),
+            Violation::NonFiniteVertex { vertex, .. }
+            | Violation::UnreferencedVertex { vertex, .. }
+            | Violation::OpenBoundary { vertex, .. }
+            | Violation::Fold { vertex, .. } => (vec![*vertex], vec![]),
+            Violation::Clockwise {
+                triangle, corners, ..
+            }
+            | Violation::ZeroArea {
+                triangle, corners, ..
+            } => (corners.iter().map(v).collect(), vec![*triangle]),
+            Violation::EdgeOverused {
+                edge, triangles, ..
+            } => (edge.iter().map(v).collect(), triangles.clone()),
+            Violation::EdgeSameDirection {
+                edge, triangles, ..
+            } => (edge.iter().map(v).collect(), triangles.to_vec()),
+            Violation::DuplicateVertex { first, second, .. } => (vec![*first, *second], vec![]),
+            Violation::BoundaryCrossing { first, second, .. } => {
+                (first.iter().chain(second).map(v).collect(), vec![])
+            }
+            Violation::Overlap { edge, .. } | Violation::BoundaryOffSegments { edge, .. } => {
+                (edge.iter().map(v).collect(), vec![])
+            }
+            Violation::HoleInMesh {
+                first_vertices,
+                pinched_at,
+                ..
+            } => (
+                first_vertices.iter().chain(pinched_at).map(v).collect(),
+                vec![],
+            ),
+            Violation::HoleCovered { triangle, .. } => (vec![], vec![*triangle]),
+            // Its endpoints are input points; where the chain breaks off is a mesh vertex.
+            Violation::SegmentNotConforming { stuck_at, .. } => {
+                (stuck_at.iter().map(|(s, _)| v(s)).collect(), vec![])
+            }
+        }
+    }
 }

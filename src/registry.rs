@@ -22,6 +22,7 @@ pub fn meshers() -> Vec<Box<dyn Mesher>> {
     }
     all.push(Box::new(crate::reference::TriangleMesher));
     all.push(Box::new(crate::reference::SpadeMesher));
+    all.push(Box::new(crate::reference::GmshMesher));
     all.extend([take("rhomb"), take("saalfeld"), take("lsb")]);
     all
 }

@@ -12,8 +12,10 @@ fn hexmesh(args: &[&str]) -> Output {
         .expect("hexmesh runs")
 }
 
+/// A path in this test binary's own scratch directory under target/ (one fixed place, so
+/// that runs overwrite each other's files instead of leaving a copy in /tmp each time).
 fn temp(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("hexmesh-cli-{}", std::process::id()));
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_commands");
     std::fs::create_dir_all(&dir).expect("temp dir");
     dir.join(name)
 }

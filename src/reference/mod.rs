@@ -7,12 +7,16 @@
 //! - `cgal`, `cgal-conforming`: CGAL's 2D Delaunay mesher through `cxx` (feature `cgal`).
 //! - `spade`: spade's constrained Delaunay refinement (Ruppert/Chew style).
 //! - `triangle`: Shewchuk's Triangle through the `tritet` crate.
+//! - `gmsh`: Gmsh's Frontal-Delaunay 2D mesher, Debian's `gmsh` program run on a `.geo`
+//!   script of the domain; no angle bound (its promise is validity).
 
 #[cfg(feature = "cgal")]
 pub mod cgal;
+pub mod gmsh;
 pub mod spade;
 pub mod triangle;
 
+pub use self::gmsh::GmshMesher;
 pub use self::spade::SpadeMesher;
 pub use self::triangle::TriangleMesher;
 

@@ -4,6 +4,7 @@
 //! The CLI and the harness use only the functions of this module; `triangle` keeps the
 //! file-level structs for bit-exact round trips.
 
+pub mod boundary;
 mod lines;
 pub mod msh;
 pub mod svg;
@@ -16,8 +17,9 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use crate::error::{Error, InputError, Result};
-use crate::mesh::{Pslg, TriMesh};
+use crate::mesh::{Labels, Pslg, TriMesh};
 
+pub use boundary::{derive_boundary, Boundary, BoundaryLoop, Edge, LoopKind};
 pub use msh::write_msh;
 pub use svg::{write_svg, SvgOptions};
 pub use triangle::{
@@ -172,6 +174,14 @@ fn read_sourced(path: &Path) -> Result<(Pslg, Source, u32)> {
     let mut pslg = Pslg {
         points: nodes.points,
         hexagon: nodes.hexagon,
+        labels: Labels {
+            point_markers: nodes.markers,
+            point_attributes: match nodes.attribute_count {
+                0 => Vec::new(),
+                _ => nodes.attributes,
+            },
+            ..Labels::default()
+        },
         ..Pslg::default()
     };
     if let Some(poly) = poly {
@@ -203,6 +213,8 @@ fn read_sourced(path: &Path) -> Result<(Pslg, Source, u32)> {
             pslg.segments.push(zero_based);
         }
         pslg.holes = poly.holes;
+        pslg.labels.segment_markers = poly.segment_markers;
+        pslg.labels.regions = poly.regions.unwrap_or_default();
     }
     Ok((pslg, source, base))
 }
@@ -545,10 +557,10 @@ fn same_file(a: &Path, b: &Path) -> bool {
     false
 }
 
-/// The extension [`write_pslg`] expects for `pslg`: "poly" when it has segments or holes,
-/// "node" for a point set.
+/// The extension [`write_pslg`] expects for `pslg`: "poly" when it has segments, holes or
+/// regions, "node" for a point set (point markers and attributes fit a `.node` file).
 pub fn pslg_extension(pslg: &Pslg) -> &'static str {
-    if pslg.segments.is_empty() && pslg.holes.is_empty() {
+    if pslg.segments.is_empty() && pslg.holes.is_empty() && pslg.labels.regions.is_empty() {
         "node"
     } else {
         "poly"
@@ -570,21 +582,30 @@ pub fn write_pslg(path: &Path, pslg: &Pslg) -> Result<()> {
             format!("segment {s:?} names a vertex beyond the {n} points"),
         ));
     }
+    pslg.labels
+        .check_fit(n, pslg.segments.len())
+        .map_err(|e| triangle::invalid(path, format!("the input's labels do not fit: {e}")))?;
     let nodes = NodeFile {
         hexagon: pslg.hexagon,
+        attribute_count: pslg.labels.attribute_count(),
+        attributes: pslg.labels.point_attributes.clone(),
+        markers: pslg.labels.point_markers.clone(),
         ..NodeFile::from_points(pslg.points.clone(), 1)
     };
     match path.extension().and_then(|e| e.to_str()) {
         Some("node") if pslg_extension(pslg) == "node" => write_node(path, &nodes),
         Some("node") => Err(triangle::invalid(
             path,
-            "the input has segments or holes, which a .node file cannot hold: write a .poly file",
+            "the input has segments, holes or regions, which a .node file cannot hold: write a \
+             .poly file",
         )),
         Some("poly") => {
             let poly = PolyFile {
                 nodes,
                 segments: pslg.segments.iter().map(|s| [s[0] + 1, s[1] + 1]).collect(),
+                segment_markers: pslg.labels.segment_markers.clone(),
                 holes: pslg.holes.clone(),
+                regions: (!pslg.labels.regions.is_empty()).then(|| pslg.labels.regions.clone()),
                 ..PolyFile::default()
             };
             write_poly(path, &poly)

@@ -1,15 +1,22 @@
 //! File formats: Triangle's `.node`/`.poly` in
-//! ([`read_input`]), Triangle's `.node`/`.ele` in and out ([`read_mesh`], [`write_mesh`]),
-//! VTK legacy and Gmsh 4.1 out for ParaView, Gmsh and meshio, and SVG pictures.
-//! The CLI and the harness use only the functions of this module; `triangle` keeps the
-//! file-level structs for bit-exact round trips.
+//! ([`read_input`], with the input's markers, attributes and regions in `Pslg::labels`),
+//! Triangle's `.node`/`.ele` in and out ([`read_mesh`], [`write_mesh`]), and out with the
+//! input's labels carried to the mesh ([`write_mesh_with`], [`derive_boundary`]):
+//! Triangle's `.node`/`.ele`/`.poly`/`.edge` with boundary markers, VTK legacy and binary
+//! VTK XML (`.vtu`) with quality and label arrays for ParaView, Gmsh 4.1 with physical groups
+//! for Gmsh and meshio, and SVG pictures. The CLI and the harness use only the functions of
+//! this module; `triangle` keeps the file-level structs for bit-exact round trips.
 
 pub mod boundary;
+mod fields;
 mod lines;
 pub mod msh;
 pub mod svg;
 pub mod triangle;
+mod triangle_out;
 pub mod vtk;
+pub mod vtu;
+mod write;
 
 use std::ffi::OsString;
 use std::fmt;
@@ -20,21 +27,29 @@ use crate::error::{Error, InputError, Result};
 use crate::mesh::{Labels, Pslg, TriMesh};
 
 pub use boundary::{derive_boundary, Boundary, BoundaryLoop, Edge, LoopKind};
-pub use msh::write_msh;
+pub use msh::{write_msh, write_msh_with};
 pub use svg::{write_svg, SvgOptions};
 pub use triangle::{
     parse_ele, parse_node, parse_poly, read_ele, read_node, read_poly, write_ele, write_node,
     write_poly, EleFile, NodeFile, PolyFile, Region,
 };
-pub use vtk::write_vtk;
+pub use vtk::{write_vtk, write_vtk_with};
+pub use vtu::{write_vtu, write_vtu_with};
+pub use write::{mesh_files, write_mesh, write_mesh_with};
 
 /// An output format of [`write_mesh`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Format {
-    /// Triangle's PREFIX.node + PREFIX.ele, 1-based.
+    /// Triangle's PREFIX.node + PREFIX.ele, 1-based, with boundary markers.
     Triangle,
+    /// Triangle's PREFIX.poly (boundary and segment edges with markers, holes, regions; its
+    /// points are PREFIX.node's, so this format also writes [`Format::Triangle`]) +
+    /// PREFIX.edge (every edge with its marker).
+    Poly,
     /// VTK legacy ASCII, PREFIX.vtk.
     Vtk,
+    /// VTK XML UnstructuredGrid with raw appended binary data, PREFIX.vtu.
+    Vtu,
     /// Gmsh 4.1 ASCII, PREFIX.msh.
     Msh,
     /// A picture coloured by smallest angle, PREFIX.svg.
@@ -43,18 +58,28 @@ pub enum Format {
 
 impl Format {
     /// Every format, in the order of the enum.
-    pub const ALL: [Format; 4] = [Format::Triangle, Format::Vtk, Format::Msh, Format::Svg];
+    pub const ALL: [Format; 6] = [
+        Format::Triangle,
+        Format::Poly,
+        Format::Vtk,
+        Format::Vtu,
+        Format::Msh,
+        Format::Svg,
+    ];
 
-    /// Parses a command-line format name: "node" or "triangle", "vtk", "msh", "svg"
-    /// (case-insensitive).
+    /// Parses a command-line format name: "node" (or "triangle", "ele"), "poly" (or "edge"),
+    /// "vtk", "vtu", "msh" (or "gmsh"), "svg" (case-insensitive).
     pub fn parse(name: &str) -> Result<Format> {
         match name.trim().to_ascii_lowercase().as_str() {
             "node" | "triangle" | "ele" => Ok(Format::Triangle),
+            "poly" | "edge" => Ok(Format::Poly),
             "vtk" => Ok(Format::Vtk),
+            "vtu" => Ok(Format::Vtu),
             "msh" | "gmsh" => Ok(Format::Msh),
             "svg" => Ok(Format::Svg),
             _ => Err(Error::Usage(format!(
-                "unknown output format '{name}'; known formats: node (or triangle), vtk, msh, svg"
+                "unknown output format '{name}'; known formats: node (or triangle), poly, vtk, \
+                 vtu, msh, svg"
             ))),
         }
     }
@@ -63,7 +88,9 @@ impl Format {
     pub fn name(self) -> &'static str {
         match self {
             Format::Triangle => "node",
+            Format::Poly => "poly",
             Format::Vtk => "vtk",
+            Format::Vtu => "vtu",
             Format::Msh => "msh",
             Format::Svg => "svg",
         }
@@ -73,7 +100,9 @@ impl Format {
     pub fn extensions(self) -> &'static [&'static str] {
         match self {
             Format::Triangle => &["node", "ele"],
+            Format::Poly => &["poly", "edge"],
             Format::Vtk => &["vtk"],
+            Format::Vtu => &["vtu"],
             Format::Msh => &["msh"],
             Format::Svg => &["svg"],
         }
@@ -370,142 +399,6 @@ pub fn read_mesh(prefix: &Path) -> Result<TriMesh> {
         vertices: nodes.points,
         triangles,
     })
-}
-
-/// The files [`write_mesh`] writes for `formats` under `prefix`, in the order it writes them
-/// (each format once): PREFIX.node + PREFIX.ele, PREFIX.vtk, PREFIX.msh, PREFIX.svg.
-pub fn mesh_files(prefix: &Path, formats: &[Format]) -> Vec<PathBuf> {
-    let mut done: Vec<Format> = Vec::new();
-    let mut files = Vec::new();
-    for &format in formats {
-        if !done.contains(&format) {
-            done.push(format);
-            files.extend(format.extensions().iter().map(|e| with_suffix(prefix, e)));
-        }
-    }
-    files
-}
-
-/// Writes `mesh` in each of `formats` (each once) under `prefix`: PREFIX.node + PREFIX.ele
-/// (1-based, as Triangle writes them), PREFIX.vtk, PREFIX.msh, PREFIX.svg. Returns the files
-/// written, in order ([`mesh_files`]). A triangle naming a missing vertex or a non-finite
-/// vertex is refused before anything is written.
-///
-/// All or nothing: every file is first written under a temporary name beside its own
-/// (`.NAME.tmp-PID`), and the files are renamed into place only when all of them have been
-/// written. When any step fails, the temporaries are removed and the files an earlier run
-/// left at these names are put back, so that no output file is created or changed.
-pub fn write_mesh(prefix: &Path, mesh: &TriMesh, formats: &[Format]) -> Result<Vec<PathBuf>> {
-    check_mesh(prefix, mesh)?;
-    let targets = mesh_files(prefix, formats);
-    let nodes = || NodeFile::from_points(mesh.vertices.clone(), 1);
-    let ele = || EleFile {
-        triangles: mesh
-            .triangles
-            .iter()
-            .map(|t| [t[0] + 1, t[1] + 1, t[2] + 1])
-            .collect(),
-        first_index: 1,
-        ..EleFile::default()
-    };
-    let write = |target: &Path, path: &Path| -> Result<()> {
-        match target.extension().and_then(|e| e.to_str()) {
-            Some("node") => write_node(path, &nodes()),
-            Some("ele") => write_ele(path, &ele()),
-            Some("vtk") => write_vtk(path, mesh),
-            Some("msh") => write_msh(path, mesh),
-            _ => write_svg(path, mesh, &SvgOptions::default()),
-        }
-    };
-    write_all_or_nothing(&targets, write)?;
-    Ok(targets)
-}
-
-/// Writes each of `targets` with `write(target, temporary)` to a temporary file beside it,
-/// then renames them all into place; see [`write_mesh`]. On failure nothing is left behind
-/// (cleanup is best effort: a failing removal is not reported over the original error).
-fn write_all_or_nothing(
-    targets: &[PathBuf],
-    mut write: impl FnMut(&Path, &Path) -> Result<()>,
-) -> Result<()> {
-    let untouched = |target: &Path, source: std::io::Error| Error::Io {
-        path: target.to_path_buf(),
-        source: std::io::Error::new(
-            source.kind(),
-            format!("{source}; no output file was written or changed"),
-        ),
-    };
-    let remove = |paths: &[PathBuf]| {
-        for path in paths {
-            let _ = std::fs::remove_file(path);
-        }
-    };
-
-    // 1. Every file under a temporary name.
-    let mut temps: Vec<PathBuf> = Vec::with_capacity(targets.len());
-    for target in targets {
-        let temp = free_name_beside(target, "tmp");
-        temps.push(temp.clone());
-        if let Err(e) = write(target, &temp) {
-            remove(&temps);
-            return Err(match e {
-                Error::Io { path, source } if path == temp => untouched(target, source),
-                other => other,
-            });
-        }
-    }
-
-    // 2. A link to (or, where links fail, a copy of) every file already at a target name, to
-    // put back if a later rename fails. A directory in the way is left to its rename to fail.
-    let mut backups: Vec<Option<PathBuf>> = Vec::with_capacity(targets.len());
-    for target in targets {
-        let in_the_way = std::fs::symlink_metadata(target).is_ok_and(|m| !m.is_dir());
-        if !in_the_way {
-            backups.push(None);
-            continue;
-        }
-        let backup = free_name_beside(target, "bak");
-        let linked = std::fs::hard_link(target, &backup)
-            .or_else(|_| std::fs::copy(target, &backup).map(|_| ()));
-        if let Err(source) = linked {
-            remove(&temps);
-            remove(&backups.iter().flatten().cloned().collect::<Vec<_>>());
-            let _ = std::fs::remove_file(&backup);
-            return Err(untouched(target, source));
-        }
-        backups.push(Some(backup));
-    }
-
-    // 3. Every temporary onto its name; on a failure, the renamed ones are undone.
-    for (k, (temp, target)) in temps.iter().zip(targets).enumerate() {
-        if let Err(source) = std::fs::rename(temp, target) {
-            for (done, backup) in targets[..k].iter().zip(&backups[..k]).rev() {
-                let _ = match backup {
-                    Some(backup) => std::fs::rename(backup, done),
-                    None => std::fs::remove_file(done),
-                };
-            }
-            remove(&temps[k..]);
-            remove(&backups[k..].iter().flatten().cloned().collect::<Vec<_>>());
-            return Err(untouched(target, source));
-        }
-    }
-    remove(&backups.into_iter().flatten().collect::<Vec<_>>());
-    Ok(())
-}
-
-/// A name for a hidden scratch file beside `target` (same directory, so a rename onto
-/// `target` stays on one file system): `.NAME.TAG-PID`, with a counter when that is taken.
-fn free_name_beside(target: &Path, tag: &str) -> PathBuf {
-    let name = target.file_name().unwrap_or_default().to_string_lossy();
-    let pid = std::process::id();
-    (0u64..)
-        .map(|k| match k {
-            0 => target.with_file_name(format!(".{name}.{tag}-{pid}")),
-            _ => target.with_file_name(format!(".{name}.{tag}-{pid}-{k}")),
-        })
-        .find(|p| std::fs::symlink_metadata(p).is_err())
-        .unwrap_or_else(|| unreachable!("an unbounded range always yields a free name"))
 }
 
 /// The files [`read_input`] reads for `path`: the file itself and, for a `.poly` file that

@@ -105,7 +105,12 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     let mut index: HashMap<(u32, u32), usize> = HashMap::with_capacity(2 * mesh.triangles.len());
     let mut edges: Vec<Edge> = Vec::new();
     let mut uses: Vec<u32> = Vec::new();
-    let mut triangle_edges: Vec<[usize; 3]> = vec![[usize::MAX; 3]; mesh.triangles.len()];
+    // Each triangle's edges, for the regions' flood fill only.
+    let with_regions = input.is_some_and(|i| !i.labels.regions.is_empty());
+    let mut triangle_edges: Vec<[usize; 3]> = match with_regions {
+        true => vec![[usize::MAX; 3]; mesh.triangles.len()],
+        false => Vec::new(),
+    };
     for (t, tri) in mesh.triangles.iter().enumerate() {
         if !topo.usable[t] {
             continue;
@@ -123,7 +128,9 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
                 edges.len() - 1
             });
             uses[e] += 1;
-            triangle_edges[t][k] = e;
+            if with_regions {
+                triangle_edges[t][k] = e;
+            }
         }
     }
     for (edge, &u) in edges.iter_mut().zip(&uses) {
@@ -223,9 +230,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
         .collect();
 
     let (triangle_regions, has_regions) = match input {
-        Some(input) if !input.labels.regions.is_empty() => {
-            (regions(mesh, input, &edges, &uses, &triangle_edges), true)
-        }
+        Some(input) if with_regions => (regions(mesh, input, &edges, &uses, &triangle_edges), true),
         _ => (vec![0.0; mesh.triangles.len()], false),
     };
 

@@ -57,6 +57,30 @@ pub fn write_mesh(prefix: &Path, mesh: &TriMesh, formats: &[Format]) -> Result<V
 /// (`.NAME.tmp-PID`), and the files are renamed into place only when all of them have been
 /// written. When any step fails, the temporaries are removed and the files an earlier run
 /// left at these names are put back, so that no output file is created or changed.
+///
+/// ```
+/// use hexmesh_core::io::{write_mesh_with, Format};
+/// use hexmesh_core::{Labels, Pslg, TriMesh};
+///
+/// // The unit square as two triangles, its bottom side marked 7 in the input.
+/// let square = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+/// let input = Pslg {
+///     points: square.clone(),
+///     segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+///     labels: Labels { segment_markers: Some(vec![7, 0, 0, 0]), ..Labels::default() },
+///     ..Pslg::default()
+/// };
+/// let mesh = TriMesh { vertices: square, triangles: vec![[0, 1, 2], [0, 2, 3]] };
+/// let dir = std::env::temp_dir().join(format!("hexmesh-doc-{}", std::process::id()));
+/// std::fs::create_dir_all(&dir)?;
+/// let written = write_mesh_with(&dir.join("sq"), &mesh, Some(&input), &[Format::Poly])?;
+/// assert_eq!(written.len(), 4); // sq.node, sq.ele, sq.poly, sq.edge
+/// let poly = std::fs::read_to_string(dir.join("sq.poly"))?;
+/// // No points (they are sq.node's), then the four sides with Triangle's markers.
+/// assert!(poly.starts_with("0 2 0 1\n4 1\n1 1 2 7\n2 2 3 1\n3 3 4 1\n4 4 1 1\n"), "{poly}");
+/// # std::fs::remove_dir_all(&dir)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn write_mesh_with(
     prefix: &Path,
     mesh: &TriMesh,

@@ -399,11 +399,39 @@ fn format_names_parse_and_unknown_ones_are_refused() {
     assert_eq!(Format::parse("vtk").ok(), Some(Format::Vtk));
     assert_eq!(Format::parse("msh").ok(), Some(Format::Msh));
     assert_eq!(Format::parse("svg").ok(), Some(Format::Svg));
+    assert_eq!(Format::parse("poly").ok(), Some(Format::Poly));
+    assert_eq!(Format::parse("edge").ok(), Some(Format::Poly));
+    assert_eq!(Format::parse("VTU").ok(), Some(Format::Vtu));
     for f in Format::ALL {
         assert_eq!(Format::parse(f.name()).ok(), Some(f));
     }
     let e = Format::parse("stl").expect_err("stl accepted");
     assert!(e.to_string().contains("stl"), "{e}");
+}
+
+#[test]
+fn a_poly_output_brings_the_node_and_ele_files_its_points_are_in() {
+    let names = |formats: &[Format]| -> Vec<String> {
+        hexmesh::io::mesh_files(Path::new("d/m.1"), formats)
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect()
+    };
+    assert_eq!(
+        names(&[Format::Vtu, Format::Poly]),
+        [
+            "d/m.1.vtu",
+            "d/m.1.node",
+            "d/m.1.ele",
+            "d/m.1.poly",
+            "d/m.1.edge"
+        ]
+    );
+    assert_eq!(
+        names(&[Format::Poly, Format::Triangle, Format::Poly]),
+        ["d/m.1.node", "d/m.1.ele", "d/m.1.poly", "d/m.1.edge"]
+    );
+    assert_eq!(names(&[Format::Msh]), ["d/m.1.msh"]);
 }
 
 proptest! {

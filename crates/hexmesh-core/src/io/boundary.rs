@@ -576,6 +576,45 @@ mod tests {
     }
 
     #[test]
+    fn a_steiner_point_rounded_off_its_segment_still_splits_it_as_the_conformity_check_says() {
+        // q is a third of the way along ab, rounded to f64: not exactly on the line.
+        let (a, b, c) = ([0.0, 0.0], [1.0, 0.1], [0.5, 1.0]);
+        let q = [1.0 / 3.0, 0.1 / 3.0];
+        assert_ne!(
+            orient2d_scaled(a, b, q),
+            0.0,
+            "the test needs a rounded point"
+        );
+        let mesh = TriMesh {
+            vertices: vec![a, q, b, c],
+            triangles: vec![[0, 1, 3], [1, 2, 3]],
+        };
+        let input = Pslg {
+            points: vec![a, b, c],
+            segments: vec![[0, 1], [1, 2], [2, 0]],
+            labels: Labels {
+                segment_markers: Some(vec![4, 0, 0]),
+                ..Labels::default()
+            },
+            ..Pslg::default()
+        };
+        let b = derive_boundary(&mesh, Some(&input));
+        assert_eq!(marker_of(&b, 0, 1), 4);
+        assert_eq!(marker_of(&b, 1, 2), 4);
+        assert_eq!(marker_of(&b, 2, 3), 1);
+        assert_eq!(b.vertex_markers, vec![4, 4, 4, 1]);
+        let v = crate::quality::validate(
+            &mesh,
+            Some(&input),
+            &crate::quality::ValidateOptions {
+                conforming: true,
+                ..Default::default()
+            },
+        );
+        assert!(v.is_empty(), "{v:?}");
+    }
+
+    #[test]
     fn edges_come_in_the_order_the_triangles_first_use_them() {
         let (mesh, _) = halves();
         let b = derive_boundary(&mesh, None);

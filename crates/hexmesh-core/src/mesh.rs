@@ -153,6 +153,21 @@ impl Pslg {
         out.points.extend(hex.corners());
         out.segments = (0..6).map(|i| [base + i, base + (i + 1) % 6]).collect();
         out.hexagon = Some(hex);
+        // The labels keep fitting: the corners and the sides get marker 0 and zero attributes.
+        let labels = &mut out.labels;
+        if let Some(m) = &mut labels.point_markers {
+            m.extend([0; 6]);
+        }
+        let width = labels.attribute_count();
+        if width > 0 {
+            labels
+                .point_attributes
+                .extend((0..6).map(|_| vec![0.0; width]));
+        }
+        if let Some(m) = &mut labels.segment_markers {
+            m.clear();
+            m.extend([0; 6]);
+        }
         out
     }
 
@@ -418,6 +433,25 @@ impl TriMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_reference_domain_of_a_labelled_point_set_keeps_labels_that_fit() {
+        let mut points = Pslg::from_points(vec![[0.0, 0.0], [1.0, 0.5]]);
+        points.labels = Labels {
+            point_markers: Some(vec![3, 4]),
+            point_attributes: vec![vec![1.0], vec![2.0]],
+            segment_markers: Some(Vec::new()),
+            ..Labels::default()
+        };
+        let domain = points.reference_domain();
+        assert_eq!((domain.points.len(), domain.segments.len()), (8, 6));
+        assert_eq!(domain.labels.check_fit(8, 6), Ok(()));
+        assert_eq!(
+            domain.labels.point_markers,
+            Some(vec![3, 4, 0, 0, 0, 0, 0, 0])
+        );
+        assert_eq!(domain.labels.point_attributes[7], vec![0.0]);
+    }
 
     fn square() -> Pslg {
         Pslg {

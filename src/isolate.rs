@@ -658,11 +658,13 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
             max_time,
         },
     };
+    // The labels stay in the parent, which writes the mesh: no mesher reads them.
     let input = Pslg {
         points,
         segments,
         holes,
         hexagon,
+        ..Pslg::default()
     };
     Ok((name, input, params))
 }
@@ -860,6 +862,7 @@ mod tests {
                     sin: -0.8,
                 },
             }),
+            ..Pslg::default()
         };
         let mut params = Params::default().with_min_angle(30.25);
         params.budget.max_time = Some(Duration::from_millis(1500));

@@ -29,7 +29,7 @@ pub mod report;
 
 pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};
-pub use mesh::{Pslg, TriMesh};
+pub use mesh::{Labels, Pslg, Region, TriMesh};
 pub use mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 pub use registry::{mesher, mesher_names, meshers};
 

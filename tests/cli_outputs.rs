@@ -233,3 +233,61 @@ fn a_normal_run_writes_every_requested_file_and_leaves_no_temporaries() {
     );
     assert!(out.status.success(), "{}", text(&out));
 }
+
+#[test]
+fn mesh_refuses_a_poly_output_naming_the_poly_input() {
+    let dir = scratch("refuses_poly_output");
+    let square =
+        "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 1\n1 1 2 5\n2 2 3 5\n3 3 4 5\n4 4 1 5\n0\n";
+    write(&dir.join("sq.poly"), square);
+    let before = set(&["sq.poly"]);
+    // `-o sq` with node alone writes sq.node and sq.ele, which the input does not read; with
+    // poly it would also write sq.poly, the input itself.
+    let args = [
+        "mesh", "sq.poly", "--mesher", "saalfeld", "-o", "sq", "--format", "vtu,poly",
+    ];
+    assert_refused(&dir, &args, "sq.poly", &before);
+    assert_eq!(read(&dir.join("sq.poly")), square);
+}
+
+#[test]
+fn poly_and_vtu_formats_write_their_files_with_the_inputs_markers() {
+    let dir = scratch("poly_vtu");
+    let square =
+        "4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 1\n1 1 2 5\n2 2 3 6\n3 3 4 0\n4 4 1 5\n0\n";
+    write(&dir.join("sq.poly"), square);
+    let args = [
+        "mesh", "sq.poly", "--mesher", "saalfeld", "-o", "m", "--format", "poly,vtu",
+    ];
+    let out = hexmesh(&dir, &args);
+    assert!(out.status.success(), "{}", text(&out));
+    let files = ["m.node", "m.ele", "m.poly", "m.edge", "m.vtu"];
+    let listed: Vec<String> = String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .map(String::from)
+        .collect();
+    assert_eq!(listed, files);
+    assert_eq!(names(&dir), set(&[&["sq.poly"][..], &files[..]].concat()));
+    assert!(read(&dir.join("m.node")).starts_with("4 2 0 1\n1 0.0 0.0 5\n"));
+    // Saalfeld keeps the square as it is: the four sides with their markers, the third
+    // (marker 0 in the input) on the boundary, so 1.
+    let poly = read(&dir.join("m.poly"));
+    assert!(poly.starts_with("0 2 0 1\n4 1\n"), "{poly}");
+    let mut markers: Vec<&str> = poly
+        .lines()
+        .skip(2)
+        .take(4)
+        .map(|l| l.rsplit(' ').next().unwrap_or(""))
+        .collect();
+    markers.sort_unstable();
+    assert_eq!(markers, ["1", "5", "5", "6"]);
+    let vtu = std::fs::read(dir.join("m.vtu")).expect("vtu");
+    assert!(vtu.starts_with(b"<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\""));
+    // The output .poly and .node read back as a valid input.
+    let back = hexmesh::io::read_input(&dir.join("m.poly")).expect("the output .poly reads");
+    assert_eq!(back.segments.len(), 4);
+    assert_eq!(
+        back.labels.segment_markers.as_deref().map(<[i64]>::len),
+        Some(4)
+    );
+}

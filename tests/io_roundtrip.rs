@@ -266,11 +266,61 @@ fn write_pslg_then_read_input_gives_the_same_pslg() {
         segments: vec![[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [5, 6], [6, 4]],
         holes: vec![[0.5, 0.45]],
         hexagon: None,
+        ..Pslg::default()
     };
     assert_eq!(hexmesh::io::pslg_extension(&square), "poly");
     write_pslg(&dir.join("square.poly"), &square).expect("poly");
     assert_eq!(read_input(&dir.join("square.poly")).expect("read"), square);
     assert!(write_pslg(&dir.join("square.node"), &square).is_err());
+}
+
+#[test]
+fn input_labels_are_read_into_the_pslg_and_written_back() {
+    let dir = scratch("labels");
+    let text = "4 2 1 1\n1 0 0 0.5 7\n2 1 0 1.5 0\n3 1 1 2.5 0\n4 0 1 3.5 8\n\
+                4 1\n1 1 2 3\n2 2 3 0\n3 3 4 0\n4 4 1 2\n0\n2\n\
+                1 0.25 0.25 10\n2 0.75 0.75 20 0.125\n";
+    let path = dir.join("labelled.poly");
+    std::fs::write(&path, text).expect("write fixture");
+    let pslg = read_input(&path).expect("read");
+    let labels = &pslg.labels;
+    assert_eq!(labels.point_markers, Some(vec![7, 0, 0, 8]));
+    assert_eq!(
+        labels.point_attributes,
+        vec![vec![0.5], vec![1.5], vec![2.5], vec![3.5]]
+    );
+    assert_eq!(labels.segment_markers, Some(vec![3, 0, 0, 2]));
+    assert_eq!(
+        labels.regions,
+        vec![
+            Region {
+                point: [0.25, 0.25],
+                attribute: 10.0,
+                max_area: None
+            },
+            Region {
+                point: [0.75, 0.75],
+                attribute: 20.0,
+                max_area: Some(0.125)
+            },
+        ]
+    );
+    write_pslg(&dir.join("again.poly"), &pslg).expect("write");
+    assert_eq!(
+        read_input(&dir.join("again.poly")).expect("read again"),
+        pslg
+    );
+    // Labels that do not fit the points are refused, and nothing is written.
+    let mut bad = pslg.clone();
+    bad.labels.segment_markers = Some(vec![1]);
+    assert!(write_pslg(&dir.join("bad.poly"), &bad).is_err());
+    assert!(!dir.join("bad.poly").exists());
+    // A .node file without markers or attributes gives no labels.
+    std::fs::write(dir.join("bare.node"), "2 2 0 0\n1 0 0\n2 1 0\n").expect("bare");
+    assert!(read_input(&dir.join("bare.node"))
+        .expect("node")
+        .labels
+        .is_empty());
 }
 
 #[test]
@@ -349,11 +399,39 @@ fn format_names_parse_and_unknown_ones_are_refused() {
     assert_eq!(Format::parse("vtk").ok(), Some(Format::Vtk));
     assert_eq!(Format::parse("msh").ok(), Some(Format::Msh));
     assert_eq!(Format::parse("svg").ok(), Some(Format::Svg));
+    assert_eq!(Format::parse("poly").ok(), Some(Format::Poly));
+    assert_eq!(Format::parse("edge").ok(), Some(Format::Poly));
+    assert_eq!(Format::parse("VTU").ok(), Some(Format::Vtu));
     for f in Format::ALL {
         assert_eq!(Format::parse(f.name()).ok(), Some(f));
     }
     let e = Format::parse("stl").expect_err("stl accepted");
     assert!(e.to_string().contains("stl"), "{e}");
+}
+
+#[test]
+fn a_poly_output_brings_the_node_and_ele_files_its_points_are_in() {
+    let names = |formats: &[Format]| -> Vec<String> {
+        hexmesh::io::mesh_files(Path::new("d/m.1"), formats)
+            .iter()
+            .map(|p| p.display().to_string())
+            .collect()
+    };
+    assert_eq!(
+        names(&[Format::Vtu, Format::Poly]),
+        [
+            "d/m.1.vtu",
+            "d/m.1.node",
+            "d/m.1.ele",
+            "d/m.1.poly",
+            "d/m.1.edge"
+        ]
+    );
+    assert_eq!(
+        names(&[Format::Poly, Format::Triangle, Format::Poly]),
+        ["d/m.1.node", "d/m.1.ele", "d/m.1.poly", "d/m.1.edge"]
+    );
+    assert_eq!(names(&[Format::Msh]), ["d/m.1.msh"]);
 }
 
 proptest! {

@@ -31,6 +31,7 @@ fn square_with_hole() -> Pslg {
         ],
         holes: vec![[2.0, 2.0]],
         hexagon: None,
+        ..Pslg::default()
     }
 }
 

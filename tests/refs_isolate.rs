@@ -82,6 +82,7 @@ fn an_error_in_the_child_is_forwarded_with_its_message() {
         segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
         holes: vec![[0.5, 0.0]],
         hexagon: None,
+        ..Pslg::default()
     };
     let err = run_isolated(
         exe(),

@@ -47,6 +47,7 @@ fn square_with_hole() -> Pslg {
         ],
         holes: vec![[0.5, 0.5]],
         hexagon: None,
+        ..Pslg::default()
     }
 }
 

@@ -149,10 +149,12 @@ struct MeshArgs {
     /// this many degrees (README "Checks").
     #[arg(long, value_name = "DEG")]
     max_rounding: Option<f64>,
-    /// Output prefix: writes PREFIX.node and PREFIX.ele (and the other --format files).
+    /// Output prefix: writes PREFIX.node and PREFIX.ele (and the other --format files), with
+    /// the input's markers, attributes and regions carried to the mesh.
     #[arg(short = 'o', long = "out")]
     prefix: PathBuf,
-    /// Output formats, comma-separated: node, vtk, msh, svg.
+    /// Output formats, comma-separated: node (.node/.ele), poly (.poly/.edge, with .node/.ele),
+    /// vtk, vtu, msh, svg.
     #[arg(long, value_delimiter = ',', default_value = "node")]
     format: Vec<String>,
     /// Also draw the hexagon subdivision with its dual mesh (hex meshers) as an SVG file.
@@ -362,7 +364,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         );
         return Ok(ExitCode::from(1));
     }
-    let written = crate::io::write_mesh(&args.prefix, &run.mesh, &formats)?;
+    let written = crate::io::write_mesh_with(&args.prefix, &run.mesh, Some(&input), &formats)?;
     eprintln!(
         "{}: {} vertices, {} triangles in {:.3} s ({})",
         mesher.name(),

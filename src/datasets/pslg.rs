@@ -74,6 +74,14 @@ fn holes() -> PslgExample {
     push_loop(&mut pslg, &triangle);
     pslg.holes.push([1.4375, 0.375]);
     pslg.holes.push(centroid(&triangle));
+    // Segment markers for the writers' boundary conditions: the L is 1, the square hole 2,
+    // the triangular hole 3.
+    pslg.labels.segment_markers = Some(
+        [(1, 6), (2, 4), (3, 3)]
+            .iter()
+            .flat_map(|&(m, k)| vec![m; k])
+            .collect(),
+    );
     // L: 2 × 0.75 + 0.875 × 0.875; square hole 0.375²; triangle hole 0.078125.
     let area = 1.5 + 0.765625 - 0.140625 - 0.078125;
     PslgExample {
@@ -188,6 +196,20 @@ mod tests {
         assert_eq!(names, PSLG_EXAMPLES);
         assert_eq!(pslg_example("pslg-slit").map(|e| e.name), Some("pslg-slit"));
         assert!(pslg_example("imr").is_none());
+    }
+
+    #[test]
+    fn the_holes_example_marks_its_outer_boundary_1_and_its_holes_2_and_3() {
+        let p = holes().pslg;
+        let markers = p.labels.segment_markers.clone().expect("segment markers");
+        assert_eq!(markers.len(), p.segments.len());
+        // Segments come loop by loop: the L's six, the square's four, the triangle's three.
+        assert_eq!(markers, [1, 1, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3]);
+        assert_eq!(p.labels.check_fit(p.points.len(), p.segments.len()), Ok(()));
+        // The other examples carry no labels.
+        assert!(pslg_examples()[1..]
+            .iter()
+            .all(|e| e.pslg.labels.is_empty()));
     }
 
     #[test]

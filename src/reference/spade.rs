@@ -489,6 +489,7 @@ mod tests {
             segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
             holes: vec![[0.5, 0.0]],
             hexagon: None,
+            ..Pslg::default()
         };
         let err = SpadeMesher.mesh(&input, &Params::default()).unwrap_err();
         assert!(err.to_string().contains("hole 0"), "{err}");

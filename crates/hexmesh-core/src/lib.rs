@@ -95,7 +95,7 @@ pub use error::{Error, InputError, Result};
 pub use geom::{Hexagon, Point};
 pub use hex::extended::Hex;
 pub use hex::HexSimple;
-pub use mesh::{Pslg, TriMesh};
+pub use mesh::{Labels, Pslg, Region, TriMesh};
 pub use mesher::{Budget, MeshRun, Mesher, Params, StopReason};
 pub use quality::Bounds;
 pub use refine::{Lsb, Saalfeld};

@@ -17,6 +17,105 @@ pub struct Pslg {
     /// The domain of a point set: the bounding hexagon. `None` means fitted to the points
     /// (`Hexagon::fitted`). Ignored when the input has segments.
     pub hexagon: Option<Hexagon>,
+    /// What a Triangle `.node`/`.poly` input says about its items beyond geometry: point
+    /// markers and attributes, segment markers, regions. No mesher reads them; the writers
+    /// carry them to the output mesh (`io::write_mesh_with`). Empty by default.
+    pub labels: Labels,
+}
+
+/// The labels of an input, as Triangle's `.node` and `.poly` files give them (Triangle 1.6
+/// documentation, ".node files", ".poly files", "Boundary markers"). Every field is optional:
+/// an absent column is `None` (markers) or empty (attributes, regions), and a point set read
+/// from a `.node` file without markers has `Labels::default()`.
+///
+/// The labels sit beside the geometry in [`Pslg`] rather than in it, so that every mesher,
+/// `Pslg::from_points` and `Pslg::check` see the same input as before: they ignore this field.
+/// The output mesh gets its labels from its input afterwards, by position (an input point is
+/// the mesh vertex with its exact coordinates; a segment is the chain of mesh edges along it),
+/// in `io::boundary`.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Labels {
+    /// One boundary marker per input point, when the `.node` header's marker flag is 1.
+    pub point_markers: Option<Vec<i64>>,
+    /// The attributes of each input point: one row per point, all of the same length, or no
+    /// rows at all (no attributes).
+    pub point_attributes: Vec<Vec<f64>>,
+    /// One boundary marker per segment, when the `.poly` segment header's marker flag is 1.
+    pub segment_markers: Option<Vec<i64>>,
+    /// The regional attributes and area constraints of a `.poly` file, in file order. Each
+    /// region is the part of the domain reachable from its point without crossing a segment;
+    /// a later region overrides an earlier one, as in Triangle.
+    pub regions: Vec<Region>,
+}
+
+impl Labels {
+    /// True when there is no label at all.
+    pub fn is_empty(&self) -> bool {
+        self == &Labels::default()
+    }
+
+    /// The number of attributes per point (0 without attributes).
+    pub fn attribute_count(&self) -> usize {
+        self.point_attributes.first().map_or(0, Vec::len)
+    }
+
+    /// Checks that the labels fit an input of `points` points and `segments` segments: one
+    /// marker per point and per segment when markers are given, one attribute row of the same
+    /// length per point when attributes are given, finite attributes and regions. Returns a
+    /// description of the first misfit.
+    pub fn check_fit(&self, points: usize, segments: usize) -> std::result::Result<(), String> {
+        if let Some(m) = &self.point_markers {
+            if m.len() != points {
+                return Err(format!("{} point markers for {points} points", m.len()));
+            }
+        }
+        if let Some(m) = &self.segment_markers {
+            if m.len() != segments {
+                return Err(format!(
+                    "{} segment markers for {segments} segments",
+                    m.len()
+                ));
+            }
+        }
+        let width = self.attribute_count();
+        if !self.point_attributes.is_empty() && self.point_attributes.len() != points {
+            return Err(format!(
+                "{} point attribute rows for {points} points",
+                self.point_attributes.len()
+            ));
+        }
+        for (k, row) in self.point_attributes.iter().enumerate() {
+            if row.len() != width {
+                return Err(format!(
+                    "point {k} has {} attributes, point 0 has {width}",
+                    row.len()
+                ));
+            }
+            if let Some(v) = row.iter().find(|v| !v.is_finite()) {
+                return Err(format!("point {k} has the non-finite attribute {v}"));
+            }
+        }
+        for (k, r) in self.regions.iter().enumerate() {
+            let values = [r.point[0], r.point[1], r.attribute];
+            if values.iter().chain(&r.max_area).any(|v| !v.is_finite()) {
+                return Err(format!("region {k} has a non-finite value: {r:?}"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A regional attribute / area constraint row of a `.poly` file. hexmesh's meshers ignore
+/// regions; the writers give every triangle the attribute of the region it lies in
+/// (`io::boundary`), and a `.poly` file keeps them through a round trip.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Region {
+    /// A point inside the region.
+    pub point: Point,
+    /// The regional attribute (or, without `max_area`, Triangle's area bound).
+    pub attribute: f64,
+    /// Triangle uses the attribute as the area bound when this field is missing.
+    pub max_area: Option<f64>,
 }
 
 impl Pslg {
@@ -54,6 +153,21 @@ impl Pslg {
         out.points.extend(hex.corners());
         out.segments = (0..6).map(|i| [base + i, base + (i + 1) % 6]).collect();
         out.hexagon = Some(hex);
+        // The labels keep fitting: the corners and the sides get marker 0 and zero attributes.
+        let labels = &mut out.labels;
+        if let Some(m) = &mut labels.point_markers {
+            m.extend([0; 6]);
+        }
+        let width = labels.attribute_count();
+        if width > 0 {
+            labels
+                .point_attributes
+                .extend((0..6).map(|_| vec![0.0; width]));
+        }
+        if let Some(m) = &mut labels.segment_markers {
+            m.clear();
+            m.extend([0; 6]);
+        }
         out
     }
 
@@ -319,6 +433,25 @@ impl TriMesh {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_reference_domain_of_a_labelled_point_set_keeps_labels_that_fit() {
+        let mut points = Pslg::from_points(vec![[0.0, 0.0], [1.0, 0.5]]);
+        points.labels = Labels {
+            point_markers: Some(vec![3, 4]),
+            point_attributes: vec![vec![1.0], vec![2.0]],
+            segment_markers: Some(Vec::new()),
+            ..Labels::default()
+        };
+        let domain = points.reference_domain();
+        assert_eq!((domain.points.len(), domain.segments.len()), (8, 6));
+        assert_eq!(domain.labels.check_fit(8, 6), Ok(()));
+        assert_eq!(
+            domain.labels.point_markers,
+            Some(vec![3, 4, 0, 0, 0, 0, 0, 0])
+        );
+        assert_eq!(domain.labels.point_attributes[7], vec![0.0]);
+    }
 
     fn square() -> Pslg {
         Pslg {

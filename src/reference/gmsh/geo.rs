@@ -295,7 +295,7 @@ mod tests {
                 [7, 4],
             ],
             holes: vec![[1.5, 1.5]],
-            hexagon: None,
+            ..Pslg::default()
         }
     }
 

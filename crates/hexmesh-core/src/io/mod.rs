@@ -1,12 +1,17 @@
 //! File formats: Triangle's `.node`/`.poly` in
-//! ([`read_input`]), Triangle's `.node`/`.ele` in and out ([`read_mesh`], [`write_mesh`]),
-//! VTK legacy and Gmsh 4.1 out for ParaView, Gmsh and meshio, and SVG pictures.
-//! The CLI and the harness use only the functions of this module; `triangle` keeps the
-//! file-level structs for bit-exact round trips.
+//! ([`read_input`], with the input's markers, attributes and regions in `Pslg::labels`),
+//! Triangle's `.node`/`.ele` in and out ([`read_mesh`], [`write_mesh`]), and out with the
+//! input's labels carried to the mesh ([`write_mesh_with`], [`derive_boundary`]):
+//! Triangle's `.node`/`.ele`/`.poly`/`.edge` with boundary markers, VTK legacy and binary
+//! VTK XML (`.vtu`) with quality and label arrays for ParaView, Gmsh 4.1 with physical groups
+//! for Gmsh and meshio, and SVG pictures. The CLI and the harness use only the functions of
+//! this module; `triangle` keeps the file-level structs for bit-exact round trips.
 //!
 //! Meshes made elsewhere are read by [`read_any_mesh`]: Gmsh `.msh` 4.1 and 2.2
 //! ([`read_msh`]), VTK legacy `.vtk` ([`read_vtk`]) and VTK XML `.vtu` ([`read_vtu`]).
 
+pub mod boundary;
+mod fields;
 mod lines;
 pub mod msh;
 mod msh_read;
@@ -14,10 +19,13 @@ mod read_any;
 mod scan;
 pub mod svg;
 pub mod triangle;
+mod triangle_out;
 pub mod vtk;
 mod vtk_read;
+pub mod vtu;
 mod vtu_data;
 mod vtu_read;
+mod write;
 
 use std::ffi::OsString;
 use std::fmt;
@@ -25,28 +33,37 @@ use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use crate::error::{Error, InputError, Result};
-use crate::mesh::{Pslg, TriMesh};
+use crate::mesh::{Labels, Pslg, TriMesh};
 
 pub use msh_read::{parse_msh, read_msh};
 pub use read_any::{read_any_mesh, LoadedMesh, MeshFormat};
 pub use vtk_read::{parse_vtk, read_vtk};
 pub use vtu_read::{parse_vtu, read_vtu};
 
-pub use msh::write_msh;
+pub use boundary::{derive_boundary, Boundary, BoundaryLoop, Edge, LoopKind};
+pub use msh::{write_msh, write_msh_with};
 pub use svg::{write_svg, SvgOptions};
 pub use triangle::{
     parse_ele, parse_node, parse_poly, read_ele, read_node, read_poly, write_ele, write_node,
     write_poly, EleFile, NodeFile, PolyFile, Region,
 };
-pub use vtk::write_vtk;
+pub use vtk::{write_vtk, write_vtk_with};
+pub use vtu::{write_vtu, write_vtu_with};
+pub use write::{mesh_files, write_mesh, write_mesh_with};
 
 /// An output format of [`write_mesh`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Format {
-    /// Triangle's PREFIX.node + PREFIX.ele, 1-based.
+    /// Triangle's PREFIX.node + PREFIX.ele, 1-based, with boundary markers.
     Triangle,
+    /// Triangle's PREFIX.poly (boundary and segment edges with markers, holes, regions; its
+    /// points are PREFIX.node's, so this format also writes [`Format::Triangle`]) +
+    /// PREFIX.edge (every edge with its marker).
+    Poly,
     /// VTK legacy ASCII, PREFIX.vtk.
     Vtk,
+    /// VTK XML UnstructuredGrid with raw appended binary data, PREFIX.vtu.
+    Vtu,
     /// Gmsh 4.1 ASCII, PREFIX.msh.
     Msh,
     /// A picture coloured by smallest angle, PREFIX.svg.
@@ -55,18 +72,28 @@ pub enum Format {
 
 impl Format {
     /// Every format, in the order of the enum.
-    pub const ALL: [Format; 4] = [Format::Triangle, Format::Vtk, Format::Msh, Format::Svg];
+    pub const ALL: [Format; 6] = [
+        Format::Triangle,
+        Format::Poly,
+        Format::Vtk,
+        Format::Vtu,
+        Format::Msh,
+        Format::Svg,
+    ];
 
-    /// Parses a command-line format name: "node" or "triangle", "vtk", "msh", "svg"
-    /// (case-insensitive).
+    /// Parses a command-line format name: "node" (or "triangle", "ele"), "poly" (or "edge"),
+    /// "vtk", "vtu", "msh" (or "gmsh"), "svg" (case-insensitive).
     pub fn parse(name: &str) -> Result<Format> {
         match name.trim().to_ascii_lowercase().as_str() {
             "node" | "triangle" | "ele" => Ok(Format::Triangle),
+            "poly" | "edge" => Ok(Format::Poly),
             "vtk" => Ok(Format::Vtk),
+            "vtu" => Ok(Format::Vtu),
             "msh" | "gmsh" => Ok(Format::Msh),
             "svg" => Ok(Format::Svg),
             _ => Err(Error::Usage(format!(
-                "unknown output format '{name}'; known formats: node (or triangle), vtk, msh, svg"
+                "unknown output format '{name}'; known formats: node (or triangle), poly, vtk, \
+                 vtu, msh, svg"
             ))),
         }
     }
@@ -75,7 +102,9 @@ impl Format {
     pub fn name(self) -> &'static str {
         match self {
             Format::Triangle => "node",
+            Format::Poly => "poly",
             Format::Vtk => "vtk",
+            Format::Vtu => "vtu",
             Format::Msh => "msh",
             Format::Svg => "svg",
         }
@@ -85,7 +114,9 @@ impl Format {
     pub fn extensions(self) -> &'static [&'static str] {
         match self {
             Format::Triangle => &["node", "ele"],
+            Format::Poly => &["poly", "edge"],
             Format::Vtk => &["vtk"],
+            Format::Vtu => &["vtu"],
             Format::Msh => &["msh"],
             Format::Svg => &["svg"],
         }
@@ -192,6 +223,14 @@ fn read_sourced(path: &Path) -> Result<(Pslg, Source, u32)> {
     let mut pslg = Pslg {
         points: nodes.points,
         hexagon: nodes.hexagon,
+        labels: Labels {
+            point_markers: nodes.markers,
+            point_attributes: match nodes.attribute_count {
+                0 => Vec::new(),
+                _ => nodes.attributes,
+            },
+            ..Labels::default()
+        },
         ..Pslg::default()
     };
     if let Some(poly) = poly {
@@ -223,6 +262,8 @@ fn read_sourced(path: &Path) -> Result<(Pslg, Source, u32)> {
             pslg.segments.push(zero_based);
         }
         pslg.holes = poly.holes;
+        pslg.labels.segment_markers = poly.segment_markers;
+        pslg.labels.regions = poly.regions.unwrap_or_default();
     }
     Ok((pslg, source, base))
 }
@@ -387,142 +428,6 @@ pub fn read_mesh_numbered(prefix: &Path) -> Result<(TriMesh, u32)> {
     Ok((mesh, base))
 }
 
-/// The files [`write_mesh`] writes for `formats` under `prefix`, in the order it writes them
-/// (each format once): PREFIX.node + PREFIX.ele, PREFIX.vtk, PREFIX.msh, PREFIX.svg.
-pub fn mesh_files(prefix: &Path, formats: &[Format]) -> Vec<PathBuf> {
-    let mut done: Vec<Format> = Vec::new();
-    let mut files = Vec::new();
-    for &format in formats {
-        if !done.contains(&format) {
-            done.push(format);
-            files.extend(format.extensions().iter().map(|e| with_suffix(prefix, e)));
-        }
-    }
-    files
-}
-
-/// Writes `mesh` in each of `formats` (each once) under `prefix`: PREFIX.node + PREFIX.ele
-/// (1-based, as Triangle writes them), PREFIX.vtk, PREFIX.msh, PREFIX.svg. Returns the files
-/// written, in order ([`mesh_files`]). A triangle naming a missing vertex or a non-finite
-/// vertex is refused before anything is written.
-///
-/// All or nothing: every file is first written under a temporary name beside its own
-/// (`.NAME.tmp-PID`), and the files are renamed into place only when all of them have been
-/// written. When any step fails, the temporaries are removed and the files an earlier run
-/// left at these names are put back, so that no output file is created or changed.
-pub fn write_mesh(prefix: &Path, mesh: &TriMesh, formats: &[Format]) -> Result<Vec<PathBuf>> {
-    check_mesh(prefix, mesh)?;
-    let targets = mesh_files(prefix, formats);
-    let nodes = || NodeFile::from_points(mesh.vertices.clone(), 1);
-    let ele = || EleFile {
-        triangles: mesh
-            .triangles
-            .iter()
-            .map(|t| [t[0] + 1, t[1] + 1, t[2] + 1])
-            .collect(),
-        first_index: 1,
-        ..EleFile::default()
-    };
-    let write = |target: &Path, path: &Path| -> Result<()> {
-        match target.extension().and_then(|e| e.to_str()) {
-            Some("node") => write_node(path, &nodes()),
-            Some("ele") => write_ele(path, &ele()),
-            Some("vtk") => write_vtk(path, mesh),
-            Some("msh") => write_msh(path, mesh),
-            _ => write_svg(path, mesh, &SvgOptions::default()),
-        }
-    };
-    write_all_or_nothing(&targets, write)?;
-    Ok(targets)
-}
-
-/// Writes each of `targets` with `write(target, temporary)` to a temporary file beside it,
-/// then renames them all into place; see [`write_mesh`]. On failure nothing is left behind
-/// (cleanup is best effort: a failing removal is not reported over the original error).
-fn write_all_or_nothing(
-    targets: &[PathBuf],
-    mut write: impl FnMut(&Path, &Path) -> Result<()>,
-) -> Result<()> {
-    let untouched = |target: &Path, source: std::io::Error| Error::Io {
-        path: target.to_path_buf(),
-        source: std::io::Error::new(
-            source.kind(),
-            format!("{source}; no output file was written or changed"),
-        ),
-    };
-    let remove = |paths: &[PathBuf]| {
-        for path in paths {
-            let _ = std::fs::remove_file(path);
-        }
-    };
-
-    // 1. Every file under a temporary name.
-    let mut temps: Vec<PathBuf> = Vec::with_capacity(targets.len());
-    for target in targets {
-        let temp = free_name_beside(target, "tmp");
-        temps.push(temp.clone());
-        if let Err(e) = write(target, &temp) {
-            remove(&temps);
-            return Err(match e {
-                Error::Io { path, source } if path == temp => untouched(target, source),
-                other => other,
-            });
-        }
-    }
-
-    // 2. A link to (or, where links fail, a copy of) every file already at a target name, to
-    // put back if a later rename fails. A directory in the way is left to its rename to fail.
-    let mut backups: Vec<Option<PathBuf>> = Vec::with_capacity(targets.len());
-    for target in targets {
-        let in_the_way = std::fs::symlink_metadata(target).is_ok_and(|m| !m.is_dir());
-        if !in_the_way {
-            backups.push(None);
-            continue;
-        }
-        let backup = free_name_beside(target, "bak");
-        let linked = std::fs::hard_link(target, &backup)
-            .or_else(|_| std::fs::copy(target, &backup).map(|_| ()));
-        if let Err(source) = linked {
-            remove(&temps);
-            remove(&backups.iter().flatten().cloned().collect::<Vec<_>>());
-            let _ = std::fs::remove_file(&backup);
-            return Err(untouched(target, source));
-        }
-        backups.push(Some(backup));
-    }
-
-    // 3. Every temporary onto its name; on a failure, the renamed ones are undone.
-    for (k, (temp, target)) in temps.iter().zip(targets).enumerate() {
-        if let Err(source) = std::fs::rename(temp, target) {
-            for (done, backup) in targets[..k].iter().zip(&backups[..k]).rev() {
-                let _ = match backup {
-                    Some(backup) => std::fs::rename(backup, done),
-                    None => std::fs::remove_file(done),
-                };
-            }
-            remove(&temps[k..]);
-            remove(&backups[k..].iter().flatten().cloned().collect::<Vec<_>>());
-            return Err(untouched(target, source));
-        }
-    }
-    remove(&backups.into_iter().flatten().collect::<Vec<_>>());
-    Ok(())
-}
-
-/// A name for a hidden scratch file beside `target` (same directory, so a rename onto
-/// `target` stays on one file system): `.NAME.TAG-PID`, with a counter when that is taken.
-fn free_name_beside(target: &Path, tag: &str) -> PathBuf {
-    let name = target.file_name().unwrap_or_default().to_string_lossy();
-    let pid = std::process::id();
-    (0u64..)
-        .map(|k| match k {
-            0 => target.with_file_name(format!(".{name}.{tag}-{pid}")),
-            _ => target.with_file_name(format!(".{name}.{tag}-{pid}-{k}")),
-        })
-        .find(|p| std::fs::symlink_metadata(p).is_err())
-        .unwrap_or_else(|| unreachable!("an unbounded range always yields a free name"))
-}
-
 /// The files [`read_input`] reads for `path`: the file itself and, for a `.poly` file that
 /// lists no points, the `.node` file beside it.
 pub fn input_files(path: &Path) -> Vec<PathBuf> {
@@ -572,10 +477,10 @@ fn same_file(a: &Path, b: &Path) -> bool {
     false
 }
 
-/// The extension [`write_pslg`] expects for `pslg`: "poly" when it has segments or holes,
-/// "node" for a point set.
+/// The extension [`write_pslg`] expects for `pslg`: "poly" when it has segments, holes or
+/// regions, "node" for a point set (point markers and attributes fit a `.node` file).
 pub fn pslg_extension(pslg: &Pslg) -> &'static str {
-    if pslg.segments.is_empty() && pslg.holes.is_empty() {
+    if pslg.segments.is_empty() && pslg.holes.is_empty() && pslg.labels.regions.is_empty() {
         "node"
     } else {
         "poly"
@@ -597,21 +502,30 @@ pub fn write_pslg(path: &Path, pslg: &Pslg) -> Result<()> {
             format!("segment {s:?} names a vertex beyond the {n} points"),
         ));
     }
+    pslg.labels
+        .check_fit(n, pslg.segments.len())
+        .map_err(|e| triangle::invalid(path, format!("the input's labels do not fit: {e}")))?;
     let nodes = NodeFile {
         hexagon: pslg.hexagon,
+        attribute_count: pslg.labels.attribute_count(),
+        attributes: pslg.labels.point_attributes.clone(),
+        markers: pslg.labels.point_markers.clone(),
         ..NodeFile::from_points(pslg.points.clone(), 1)
     };
     match path.extension().and_then(|e| e.to_str()) {
         Some("node") if pslg_extension(pslg) == "node" => write_node(path, &nodes),
         Some("node") => Err(triangle::invalid(
             path,
-            "the input has segments or holes, which a .node file cannot hold: write a .poly file",
+            "the input has segments, holes or regions, which a .node file cannot hold: write a \
+             .poly file",
         )),
         Some("poly") => {
             let poly = PolyFile {
                 nodes,
                 segments: pslg.segments.iter().map(|s| [s[0] + 1, s[1] + 1]).collect(),
+                segment_markers: pslg.labels.segment_markers.clone(),
                 holes: pslg.holes.clone(),
+                regions: (!pslg.labels.regions.is_empty()).then(|| pslg.labels.regions.clone()),
                 ..PolyFile::default()
             };
             write_poly(path, &poly)

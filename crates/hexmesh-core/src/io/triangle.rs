@@ -13,6 +13,7 @@ use std::path::Path;
 use super::lines::{read_text, Lines, Row};
 use crate::error::{Error, Result};
 use crate::geom::{Hexagon, Point, Turn};
+pub use crate::mesh::Region;
 
 /// Triangle's default numbering when a file has no row to detect it from.
 const DEFAULT_FIRST_INDEX: u32 = 1;
@@ -65,18 +66,6 @@ impl NodeFile {
             ..NodeFile::default()
         }
     }
-}
-
-/// A regional attribute / area constraint row of a `.poly` file. hexmesh ignores regions;
-/// they are kept so that a `.poly` file survives a round trip.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Region {
-    /// A point inside the region.
-    pub point: Point,
-    /// The regional attribute (or, without `max_area`, Triangle's area bound).
-    pub attribute: f64,
-    /// Triangle uses the attribute as the area bound when this field is missing.
-    pub max_area: Option<f64>,
 }
 
 /// A `.poly` file.

@@ -8,7 +8,7 @@ use crate::mesh::TriMesh;
 
 /// A chain of boundary edges (indices into the boundary list), closed unless the boundary
 /// is broken.
-pub(super) struct BoundaryLoop {
+pub(crate) struct BoundaryLoop {
     /// The loop's edges in order, as indices into the boundary list.
     pub edges: Vec<usize>,
     /// True when the loop passes through a vertex shared with another loop or itself.
@@ -19,7 +19,7 @@ pub(super) struct BoundaryLoop {
 /// edge is continued by the outgoing edge of the same fan of triangles (found by rotating
 /// around the vertex through shared edges), so that two discs touching at a corner give two
 /// loops rather than one figure eight.
-pub(super) fn boundary_loops(
+pub(crate) fn boundary_loops(
     mesh: &TriMesh,
     topo: &Topology,
     boundary: &[DirectedEdge],

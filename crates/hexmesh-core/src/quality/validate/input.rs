@@ -1,11 +1,8 @@
 //! Conformity to the input: every input point is a mesh vertex, every input segment a chain
 //! of mesh edges along it, and, where the segments bound a region, the mesh ends at them.
 
-use std::collections::HashMap;
-
-use super::vertices::point_key;
+use super::chains::{input_vertices, segment_chain, Adjacency};
 use super::{DirectedEdge, Topology, Violation};
-use crate::geom::{dist, orient2d_scaled, scale_exponent, scale_point, Point};
 use crate::mesh::{Pslg, TriMesh};
 
 /// Every input point must be a vertex (bit-exact); with `conforming`, every input segment a
@@ -19,16 +16,7 @@ pub(super) fn input_conformity(
     conforming: bool,
     out: &mut Vec<Violation>,
 ) {
-    let mut index: HashMap<(u64, u64), u32> = HashMap::with_capacity(mesh.vertices.len());
-    for (v, &p) in mesh.vertices.iter().enumerate().rev() {
-        // Reverse order so that the first of duplicate vertices wins.
-        index.insert(point_key(p), v as u32);
-    }
-    let vertex_of: Vec<Option<u32>> = input
-        .points
-        .iter()
-        .map(|&p| index.get(&point_key(p)).copied())
-        .collect();
+    let vertex_of = input_vertices(mesh, input);
     for (i, (&p, v)) in input.points.iter().zip(&vertex_of).enumerate() {
         if v.is_none() {
             out.push(Violation::MissingInputPoint { input: i, point: p });
@@ -38,33 +26,7 @@ pub(super) fn input_conformity(
         return;
     }
 
-    // Adjacency in compressed rows, from every edge of the usable triangles.
-    let n = mesh.vertices.len();
-    let mut pairs: Vec<(u32, u32)> = Vec::new();
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        if topo.usable[t] {
-            for k in 0..3 {
-                let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                pairs.push((a, b));
-                pairs.push((b, a));
-            }
-        }
-    }
-    pairs.sort_unstable();
-    pairs.dedup();
-    let mut start = vec![0usize; n + 1];
-    for &(a, _) in &pairs {
-        start[a as usize + 1] += 1;
-    }
-    for v in 0..n {
-        start[v + 1] += start[v];
-    }
-    let neighbours = |v: u32| {
-        pairs[start[v as usize]..start[v as usize + 1]]
-            .iter()
-            .map(|e| e.1)
-    };
-
+    let adjacency = Adjacency::new(mesh, &topo.usable);
     // The mesh edges the segment chains walk, as (low, high) vertex pairs.
     let mut on_segments: Vec<(u32, u32)> = Vec::new();
     let mut conforms = true;
@@ -85,52 +47,11 @@ pub(super) fn input_conformity(
             conforms = false;
             continue;
         };
-        // Progress along the dominant axis of the segment: exact for collinear points.
-        let (axis, sign) = if (pb[0] - pa[0]).abs() >= (pb[1] - pa[1]).abs() {
-            (0, (pb[0] - pa[0]).signum())
-        } else {
-            (1, (pb[1] - pa[1]).signum())
-        };
-        let progress = |v: u32| sign * mesh.vertices[v as usize][axis];
-        // Meshers split segments at constructed points (midpoints, crossings) that f64 can only
-        // round onto the segment's line; a vertex counts as on the segment when it is within
-        // 2^-40 of the segment's coordinate scale of the line: rounding, never a visible kink.
-        // Input endpoints still have to match bit-exactly (above). The test runs on the points
-        // scaled by the power of two that brings the segment's largest coordinate into [1, 2)
-        // (exact; every quantity below scales alike, so the decision is the unscaled one),
-        // so that neither the length nor the orientation under- or overflows.
-        let k = scale_exponent(&[pa[0], pa[1], pb[0], pb[1]]);
-        let (sa, sb) = (scale_point(pa, -k), scale_point(pb, -k));
-        let length = dist(sa, sb);
-        let scale = [sa[0], sa[1], sb[0], sb[1]]
-            .iter()
-            .fold(length, |m, c| m.max(c.abs()));
-        let tolerance = scale * (-40f64).exp2();
-        let on_line = |pw: Point| {
-            let o = orient2d_scaled(sa, sb, scale_point(pw, -k));
-            o == 0.0 || o.abs() / length <= tolerance
-        };
-        let end = progress(vb);
-        let mut u = va;
-        while u != vb {
-            let here = progress(u);
-            let step = neighbours(u)
-                .filter(|&w| {
-                    let pw = mesh.vertices[w as usize];
-                    on_line(pw) && progress(w) > here && progress(w) <= end
-                })
-                .min_by(|&x, &y| progress(x).total_cmp(&progress(y)).then(x.cmp(&y)));
-            match step {
-                Some(w) => {
-                    on_segments.push((u.min(w), u.max(w)));
-                    u = w;
-                }
-                None => {
-                    out.push(not_conforming(Some((u, mesh.vertices[u as usize]))));
-                    conforms = false;
-                    break;
-                }
-            }
+        let chain = segment_chain(mesh, &adjacency, [pa, pb], [va, vb]);
+        on_segments.extend(chain.edges.iter().map(|&(u, w)| (u.min(w), u.max(w))));
+        if let Some(u) = chain.stuck_at {
+            out.push(not_conforming(Some((u, mesh.vertices[u as usize]))));
+            conforms = false;
         }
     }
 

@@ -24,11 +24,13 @@
 //! - `crossings`: boundary edges that cross or overlap;
 //! - `winding`: overlaps just inside the boundary and folds around interior vertices;
 //! - `area`: triangle areas against the area the boundary loops enclose;
+//! - `chains`: the vertex of each input point and the chain of edges along each segment;
 //! - `input`: input points as vertices, segments as chains of edges, the boundary on them;
 //! - `holes`: hole seeds that a triangle covers.
 
 mod area;
 mod boundary;
+pub(crate) mod chains;
 mod crossings;
 mod holes;
 mod input;
@@ -37,6 +39,7 @@ pub(super) mod vertices;
 mod violation;
 mod winding;
 
+pub(crate) use boundary::boundary_loops;
 pub(crate) use topology::{topology, DirectedEdge, Topology};
 pub use violation::{Numbering, Violation};
 
@@ -44,7 +47,7 @@ use crate::geom::orient2d_scaled;
 use crate::mesh::{Pslg, TriMesh};
 
 use area::area_balance;
-use boundary::{boundary_loops, one_disc};
+use boundary::one_disc;
 use crossings::boundary_crossings;
 use holes::holes_covered;
 use input::input_conformity;

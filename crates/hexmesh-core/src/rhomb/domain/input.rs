@@ -293,6 +293,7 @@ mod tests {
             segments,
             holes: holes.to_vec(),
             hexagon: None,
+            ..Pslg::default()
         }
     }
 

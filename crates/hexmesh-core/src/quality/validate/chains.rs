@@ -1,0 +1,141 @@
+//! Input items found in a mesh: the vertex of each input point (bit-exact coordinates) and the
+//! chain of mesh edges along each input segment. The conformity check (`input`) and the
+//! boundary derivation of the writers (`io::boundary`) read the same chains, so that a mesh
+//! `verify` calls conforming is labelled along exactly the edges it checked.
+
+use std::collections::HashMap;
+
+use super::vertices::point_key;
+use crate::geom::{dist, orient2d_scaled, scale_exponent, scale_point, Point};
+use crate::mesh::{Pslg, TriMesh};
+
+/// The mesh vertex of each input point: the vertex with the same coordinate bits (-0.0 and
+/// 0.0 count as one), the first of duplicate vertices; `None` when there is none.
+pub(crate) fn input_vertices(mesh: &TriMesh, input: &Pslg) -> Vec<Option<u32>> {
+    let mut index: HashMap<(u64, u64), u32> = HashMap::with_capacity(mesh.vertices.len());
+    for (v, &p) in mesh.vertices.iter().enumerate().rev() {
+        // Reverse order so that the first of duplicate vertices wins.
+        index.insert(point_key(p), v as u32);
+    }
+    input
+        .points
+        .iter()
+        .map(|&p| index.get(&point_key(p)).copied())
+        .collect()
+}
+
+/// The neighbours of every vertex along the edges of the usable triangles, in compressed
+/// rows sorted by vertex.
+pub(crate) struct Adjacency {
+    pairs: Vec<(u32, u32)>,
+    start: Vec<usize>,
+}
+
+impl Adjacency {
+    /// The adjacency of the triangles whose `usable` flag is set.
+    pub(crate) fn new(mesh: &TriMesh, usable: &[bool]) -> Adjacency {
+        let n = mesh.vertices.len();
+        let mut pairs: Vec<(u32, u32)> = Vec::with_capacity(6 * mesh.triangles.len());
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            if usable[t] {
+                for k in 0..3 {
+                    let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                    pairs.push((a, b));
+                    pairs.push((b, a));
+                }
+            }
+        }
+        pairs.sort_unstable();
+        pairs.dedup();
+        let mut start = vec![0usize; n + 1];
+        for &(a, _) in &pairs {
+            start[a as usize + 1] += 1;
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        Adjacency { pairs, start }
+    }
+
+    /// The neighbours of `v`, ascending.
+    pub(crate) fn neighbours(&self, v: u32) -> impl Iterator<Item = u32> + '_ {
+        self.pairs[self.start[v as usize]..self.start[v as usize + 1]]
+            .iter()
+            .map(|e| e.1)
+    }
+}
+
+/// The walk along one segment: the edges found, in order from the first endpoint, and the
+/// vertex where the walk stopped short of the second endpoint (`None` when it arrived).
+pub(crate) struct Chain {
+    /// The edges walked, each directed along the segment (from `pa` towards `pb`).
+    pub edges: Vec<(u32, u32)>,
+    /// The vertex with no next step, when the chain does not reach the far endpoint.
+    pub stuck_at: Option<u32>,
+}
+
+/// Walks from vertex `va` (at `pa`) to vertex `vb` (at `pb`) through mesh edges whose far
+/// vertex lies on the segment's line and strictly nearer `pb`, taking the nearest such
+/// neighbour each step.
+///
+/// A vertex counts as on the line when its exact orientation against the segment is zero, or
+/// within 2^-40 of the segment's coordinate scale of the line: meshers split segments at
+/// constructed points (midpoints, projections) that f64 can only round onto the line; this is
+/// rounding, never a visible kink. Progress is measured along the segment's dominant axis,
+/// which is exact for collinear points. The test runs on the points scaled by the power of two
+/// that brings the segment's largest coordinate into [1, 2) (exact; every quantity scales
+/// alike, so the decision is the unscaled one), so that neither the length nor the orientation
+/// under- or overflows.
+pub(crate) fn segment_chain(
+    mesh: &TriMesh,
+    adjacency: &Adjacency,
+    [pa, pb]: [Point; 2],
+    [va, vb]: [u32; 2],
+) -> Chain {
+    let (axis, sign) = if (pb[0] - pa[0]).abs() >= (pb[1] - pa[1]).abs() {
+        (0, (pb[0] - pa[0]).signum())
+    } else {
+        (1, (pb[1] - pa[1]).signum())
+    };
+    let progress = |v: u32| sign * mesh.vertices[v as usize][axis];
+    let k = scale_exponent(&[pa[0], pa[1], pb[0], pb[1]]);
+    let (sa, sb) = (scale_point(pa, -k), scale_point(pb, -k));
+    let length = dist(sa, sb);
+    let scale = [sa[0], sa[1], sb[0], sb[1]]
+        .iter()
+        .fold(length, |m, c| m.max(c.abs()));
+    let tolerance = scale * (-40f64).exp2();
+    let on_line = |pw: Point| {
+        let o = orient2d_scaled(sa, sb, scale_point(pw, -k));
+        o == 0.0 || o.abs() / length <= tolerance
+    };
+    let end = progress(vb);
+    let mut edges = Vec::new();
+    let mut u = va;
+    while u != vb {
+        let here = progress(u);
+        let step = adjacency
+            .neighbours(u)
+            .filter(|&w| {
+                let pw = mesh.vertices[w as usize];
+                on_line(pw) && progress(w) > here && progress(w) <= end
+            })
+            .min_by(|&x, &y| progress(x).total_cmp(&progress(y)).then(x.cmp(&y)));
+        match step {
+            Some(w) => {
+                edges.push((u, w));
+                u = w;
+            }
+            None => {
+                return Chain {
+                    edges,
+                    stuck_at: Some(u),
+                }
+            }
+        }
+    }
+    Chain {
+        edges,
+        stuck_at: None,
+    }
+}

@@ -142,11 +142,16 @@ impl Mesher for SpadeMesher {
     }
 
     fn promise(&self, params: &Params) -> Bounds {
-        super::asked_angle(self.name(), params, DEFAULT_MIN_ANGLE)
+        super::asked_angle(self.name(), params, DEFAULT_MIN_ANGLE).with_area_limits(params.max_area)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         check_params(NAME, params)?;
+        // The regions' area limits are kept with the smallest of them everywhere.
+        let params = &Params {
+            max_area: input.smallest_area_limit(params.max_area),
+            ..*params
+        };
         let domain = input.reference_domain();
         let start = Instant::now();
         // spade asserts and expects inside its refinement (e.g. a circumcentre it cannot

@@ -105,9 +105,11 @@ impl Labels {
     }
 }
 
-/// A regional attribute / area constraint row of a `.poly` file. hexmesh's meshers ignore
-/// regions; the writers give every triangle the attribute of the region it lies in
-/// (`io::boundary`), and a `.poly` file keeps them through a round trip.
+/// A regional attribute / area constraint row of a `.poly` file. Meshers with size control
+/// keep its area limit ([`Region::area_limit`]; `triangle` per region, the others with the
+/// smallest limit everywhere, [`Pslg::smallest_area_limit`]) and the rest refuse it; the
+/// writers give every triangle the attribute of the region it lies in (`io::boundary`), and a
+/// `.poly` file keeps them through a round trip.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Region {
     /// A point inside the region.
@@ -118,6 +120,15 @@ pub struct Region {
     pub max_area: Option<f64>,
 }
 
+impl Region {
+    /// The largest triangle area this region allows, as Triangle reads the row: its area
+    /// field, or its attribute when the row has no area field; a limit that is not positive
+    /// is no limit (Triangle 1.6, ".poly files" and the `-a` switch).
+    pub fn area_limit(&self) -> Option<f64> {
+        Some(self.max_area.unwrap_or(self.attribute)).filter(|&a| a > 0.0 && a.is_finite())
+    }
+}
+
 impl Pslg {
     /// A point set, with the bounding hexagon fitted to it.
     pub fn from_points(points: Vec<Point>) -> Pslg {
@@ -125,6 +136,24 @@ impl Pslg {
             points,
             ..Pslg::default()
         }
+    }
+
+    /// True when a region of the input limits the area of its triangles
+    /// ([`Region::area_limit`]).
+    pub fn has_area_limits(&self) -> bool {
+        self.labels.regions.iter().any(|r| r.area_limit().is_some())
+    }
+
+    /// The smallest of `max_area` (a limit for the whole domain) and the regions' limits
+    /// ([`Region::area_limit`]): the one limit that keeps every region's, for a mesher that
+    /// takes a single maximum area.
+    pub fn smallest_area_limit(&self, max_area: Option<f64>) -> Option<f64> {
+        self.labels
+            .regions
+            .iter()
+            .filter_map(Region::area_limit)
+            .chain(max_area)
+            .reduce(f64::min)
     }
 
     /// True when the input has segments, so the domain is what they bound.

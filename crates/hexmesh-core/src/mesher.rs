@@ -136,6 +136,31 @@ pub struct MeshRun {
     pub elapsed: Duration,
 }
 
+/// Refuses an input whose regions limit triangle areas, for a mesher without size control
+/// (`mesher`): such a limit must be kept or refused, never ignored. The error names the first
+/// region with a limit (numbered from 1, as in the file's regions section).
+pub fn refuse_area_limits(mesher: &str, input: &Pslg) -> Result<()> {
+    let regions = &input.labels.regions;
+    match regions.iter().position(|r| r.area_limit().is_some()) {
+        None => Ok(()),
+        Some(k) => {
+            let r = &regions[k];
+            Err(crate::error::Error::mesher(
+                mesher,
+                format!(
+                    "region {} at ({:?}, {:?}) limits triangle areas to {:?}, and {mesher} has no \
+                     size control: mesh the input with triangle, cgal, spade, gmsh or lsb, or \
+                     drop the area limits",
+                    k + 1,
+                    r.point[0],
+                    r.point[1],
+                    r.area_limit().unwrap_or(f64::NAN)
+                ),
+            ))
+        }
+    }
+}
+
 /// A 2D mesher.
 pub trait Mesher: Send + Sync {
     /// The name used on the command line, in reports and by `registry::mesher`.

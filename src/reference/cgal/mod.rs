@@ -234,10 +234,17 @@ impl Mesher for Cgal {
     }
 
     fn promise(&self, params: &Params) -> Bounds {
+        // The size bound S keeps every edge at most S long, so every area at most √3/4·S².
         super::asked_angle(self.name(), params, default_min_angle())
+            .with_area_limits(params.max_area)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        // The regions' area limits are kept with the smallest of them everywhere.
+        let params = &Params {
+            max_area: input.smallest_area_limit(params.max_area),
+            ..*params
+        };
         let (b, s) = self.criteria(params)?;
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
@@ -283,6 +290,7 @@ impl Mesher for CgalConforming {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        hexmesh_core::mesher::refuse_area_limits(self.name(), input)?;
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
         let start = Instant::now();

@@ -148,7 +148,9 @@ impl Mesher for GmshMesher {
         gmsh_version()
             .as_ref()
             .map_err(|e| Error::mesher(NAME, e.clone()))?;
-        let script = geo::script(input, params.max_area.map(edge_for_area), OPTIONS)?;
+        // The regions' area limits, as a size target: the smallest of them everywhere.
+        let area = input.smallest_area_limit(params.max_area);
+        let script = geo::script(input, area.map(edge_for_area), OPTIONS)?;
         let dir = Scratch::new()?;
         let geo_path = dir.path.join("domain.geo");
         let msh_path = dir.path.join("domain.msh");

@@ -105,12 +105,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     let mut index: HashMap<(u32, u32), usize> = HashMap::with_capacity(2 * mesh.triangles.len());
     let mut edges: Vec<Edge> = Vec::new();
     let mut uses: Vec<u32> = Vec::new();
-    // Each triangle's edges, for the regions' flood fill only.
     let with_regions = input.is_some_and(|i| !i.labels.regions.is_empty());
-    let mut triangle_edges: Vec<[usize; 3]> = match with_regions {
-        true => vec![[usize::MAX; 3]; mesh.triangles.len()],
-        false => Vec::new(),
-    };
     for (t, tri) in mesh.triangles.iter().enumerate() {
         if !topo.usable[t] {
             continue;
@@ -128,9 +123,6 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
                 edges.len() - 1
             });
             uses[e] += 1;
-            if with_regions {
-                triangle_edges[t][k] = e;
-            }
         }
     }
     for (edge, &u) in edges.iter_mut().zip(&uses) {
@@ -230,7 +222,14 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
         .collect();
 
     let (triangle_regions, has_regions) = match input {
-        Some(input) if with_regions => (regions(mesh, input, &edges, &uses, &triangle_edges), true),
+        // The flood fill the area-limit check uses too (`quality::triangle_regions`).
+        Some(input) if with_regions => {
+            let attributes = crate::quality::triangle_regions(mesh, input)
+                .into_iter()
+                .map(|r| r.map_or(0.0, |k| input.labels.regions[k].attribute))
+                .collect();
+            (attributes, true)
+        }
         _ => (vec![0.0; mesh.triangles.len()], false),
     };
 
@@ -308,63 +307,6 @@ fn vertex_attributes(
     }
     out.into_iter()
         .map(|r| r.unwrap_or_else(|| vec![0.0; width]))
-        .collect()
-}
-
-/// The regional attribute of every triangle: the triangles joined by edges that are used
-/// twice and lie on no segment form the parts of the domain; each region, in input order,
-/// sets the attribute of the part holding the first triangle (in index order) that contains
-/// its point (exact orientations; on an edge counts as inside).
-fn regions(
-    mesh: &TriMesh,
-    input: &Pslg,
-    edges: &[Edge],
-    uses: &[u32],
-    triangle_edges: &[[usize; 3]],
-) -> Vec<f64> {
-    let m = mesh.triangles.len();
-    let mut parent: Vec<usize> = (0..m).collect();
-    fn root(parent: &mut [usize], mut t: usize) -> usize {
-        while parent[t] != t {
-            parent[t] = parent[parent[t]];
-            t = parent[t];
-        }
-        t
-    }
-    // The first triangle seen on each open edge, to join the second one to.
-    let mut first_on: Vec<usize> = vec![usize::MAX; edges.len()];
-    for (t, tri_edges) in triangle_edges.iter().enumerate() {
-        for &e in tri_edges {
-            if e == usize::MAX || uses[e] != 2 || edges[e].segment.is_some() {
-                continue;
-            }
-            match first_on[e] {
-                usize::MAX => first_on[e] = t,
-                other => {
-                    let (a, b) = (root(&mut parent, other), root(&mut parent, t));
-                    parent[a.max(b)] = a.min(b);
-                }
-            }
-        }
-    }
-    let p = |v: u32| mesh.vertices[v as usize];
-    let mut value: HashMap<usize, f64> = HashMap::new();
-    for region in &input.labels.regions {
-        let q = region.point;
-        let found = mesh.triangles.iter().enumerate().find(|(t, tri)| {
-            triangle_edges[*t][0] != usize::MAX
-                && (0..3).all(|k| orient2d_scaled(p(tri[k]), p(tri[(k + 1) % 3]), q) >= 0.0)
-        });
-        if let Some((t, _)) = found {
-            let r = root(&mut parent, t);
-            value.insert(r, region.attribute);
-        }
-    }
-    (0..m)
-        .map(|t| {
-            let r = root(&mut parent, t);
-            value.get(&r).copied().unwrap_or(0.0)
-        })
         .collect()
 }
 

@@ -105,6 +105,11 @@ pub struct Bounds {
     /// `min_angle` taken whole: at an input point, both of its edges along input segments
     /// from there (paper 001's exception; a split corner does not pass).
     pub whole_sharp_corners: bool,
+    /// Largest allowed triangle area everywhere (the maximum area the mesher was asked for).
+    pub max_area: Option<f64>,
+    /// Every triangle's area is at most the area limit of the input region it lies in
+    /// ([`crate::Region::area_limit`], regions located by [`crate::quality::triangle_regions`]).
+    pub region_area_limits: bool,
 }
 
 impl Bounds {
@@ -122,6 +127,18 @@ impl Bounds {
             conforming: true,
             interior_only_on_segments: false,
             whole_sharp_corners: false,
+            max_area: None,
+            region_area_limits: false,
+        }
+    }
+
+    /// These bounds and the area limits a mesher with size control keeps: `max_area`
+    /// everywhere and each input region's own limit.
+    pub fn with_area_limits(self, max_area: Option<f64>) -> Bounds {
+        Bounds {
+            max_area,
+            region_area_limits: true,
+            ..self
         }
     }
 

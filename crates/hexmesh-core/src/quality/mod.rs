@@ -27,7 +27,7 @@ pub use metrics::{
     metrics, metrics_split, triangle_shape, DelaunayEdge, Metrics, SplitMetrics, TriangleShape,
     Worst, DELAUNAY_ANGLE_SLACK_DEG,
 };
-pub use validate::{validate, Numbering, ValidateOptions, Violation};
+pub use validate::{triangle_regions, validate, Numbering, ValidateOptions, Violation};
 
 /// A coordinate or area as text that names its f64 exactly (both forms are Rust's shortest
 /// round-trip output) and stays short: plain decimals for magnitudes in [1e-5, 1e16), which

@@ -293,6 +293,10 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         if let Some(r) = b.min_angle_over_ancestor {
             checks.push(descent_check(mesh, input, r));
         }
+        let regional = b.region_area_limits && input.is_some_and(Pslg::has_area_limits);
+        if b.max_area.is_some() || regional {
+            checks.push(area_check(mesh, input.filter(|_| regional), b.max_area));
+        }
         if b.delaunay {
             let count = m.delaunay_violations;
             let failed = count > 0;
@@ -373,6 +377,56 @@ fn descent_check(mesh: &TriMesh, input: Option<&Pslg>, r: f64) -> Check {
         worst,
         rounding: None,
         note,
+    }
+}
+
+/// The relative slack of the area check: a mesher compares areas computed in f64, which may
+/// differ from ours in the last bits.
+const AREA_SLACK: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// Every triangle's area against its limit: `max_area` everywhere and, with `input`, the
+/// limit of the region it lies in (`triangle_regions`). The figure is the largest area over
+/// limit; it passes up to 1 + 2^-40.
+fn area_check(mesh: &TriMesh, input: Option<&Pslg>, max_area: Option<f64>) -> Check {
+    let regions = input.map(|i| crate::quality::triangle_regions(mesh, i));
+    let mut worst: Option<(f64, usize)> = None;
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v as usize >= mesh.vertices.len()) {
+            continue;
+        }
+        let regional = match (&regions, input) {
+            (Some(r), Some(i)) => r[t].and_then(|k| i.labels.regions[k].area_limit()),
+            _ => None,
+        };
+        let Some(limit) = regional.into_iter().chain(max_area).reduce(f64::min) else {
+            continue;
+        };
+        let [a, b, c] = mesh.corners(t);
+        let ratio = 0.5 * crate::geom::orient2d(a, b, c) / limit;
+        if worst.is_none_or(|(w, _)| ratio > w) {
+            worst = Some((ratio, t));
+        }
+    }
+    let failed = worst.is_some_and(|(w, _)| w > 1.0 + AREA_SLACK);
+    Check {
+        what: "triangle area / its limit".to_string(),
+        value: worst.map(|(w, _)| w),
+        relation: "≤".to_string(),
+        limit: 1.0,
+        status: if failed { Status::Fail } else { Status::Ok },
+        worst: worst.filter(|_| failed).map(|(w, t)| WorstTriangle {
+            triangle: t,
+            corners: mesh.corners(t),
+            value: w,
+        }),
+        rounding: None,
+        note: Some(
+            match (max_area, input.is_some()) {
+                (Some(a), true) => format!("--max-area {a} and the input's regional limits"),
+                (Some(a), false) => format!("--max-area {a}"),
+                (None, _) => "the input's regional limits".to_string(),
+            } + "; up to 1 + 2^-40",
+        ),
     }
 }
 

@@ -670,11 +670,12 @@ impl Lsb {
         Ok(e.into_run(mesh.clone(), segments, Some(target)))
     }
 
-    /// The target `params` asks for: `max_area`, or else every edge below 1/20 of the
-    /// diagonal of the domain's bounding box.
+    /// The target `params` asks for: `max_area` and the input regions' area limits (the
+    /// smallest of them, everywhere: `Pslg::smallest_area_limit`), or else every edge below
+    /// 1/20 of the diagonal of the domain's bounding box.
     pub fn target(input: &Pslg, params: &Params) -> Result<Target> {
         input.validate_input()?;
-        Ok(match params.max_area {
+        Ok(match input.smallest_area_limit(params.max_area) {
             Some(a) if a.is_finite() && a > 0.0 => Target::MaxArea(a),
             Some(a) => {
                 return Err(Error::Usage(format!(
@@ -757,11 +758,11 @@ impl Mesher for Lsb {
         true
     }
 
-    fn promise(&self, _: &Params) -> Bounds {
+    fn promise(&self, params: &Params) -> Bounds {
         // Paper 003: plain bisection and the adaptive refinement with rule 4.1 keep half the
         // smallest angle of the initial triangle (Sec. 4); 2/3 needs every quaternary split
         // completed, which only uniform refinement does (Theorem 3.4).
-        Bounds::descent(self.name(), LSB_ADAPTIVE_RATIO)
+        Bounds::descent(self.name(), LSB_ADAPTIVE_RATIO).with_area_limits(params.max_area)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

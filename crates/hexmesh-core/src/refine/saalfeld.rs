@@ -536,6 +536,7 @@ impl Mesher for Saalfeld {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        crate::mesher::refuse_area_limits(self.name(), input)?;
         Ok(self.refine(input, params)?.run)
     }
 }

@@ -104,7 +104,8 @@ impl Mesher for Rhomb {
         // max_area in units of the root side 2R squared, and the coarsest level whose
         // equilateral halves (√3/4·side²) respect it.
         let root_side = 2.0 * hex.circumradius;
-        let max_area = match params.max_area {
+        // The regions' area limits are kept with the smallest of them everywhere.
+        let max_area = match input.smallest_area_limit(params.max_area) {
             None => None,
             Some(a) if a > 0.0 && a.is_finite() => Some(a / (root_side * root_side)),
             Some(a) => {

@@ -188,6 +188,7 @@ impl Mesher for Hex {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        crate::mesher::refuse_area_limits(self.name(), input)?;
         let start = Instant::now();
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
         if input.has_segments() {

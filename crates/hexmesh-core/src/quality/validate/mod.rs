@@ -26,7 +26,9 @@
 //! - `area`: triangle areas against the area the boundary loops enclose;
 //! - `chains`: the vertex of each input point and the chain of edges along each segment;
 //! - `input`: input points as vertices, segments as chains of edges, the boundary on them;
-//! - `holes`: hole seeds that a triangle covers.
+//! - `holes`: hole seeds that a triangle covers;
+//! - `regions`: the region of the input each triangle lies in (regional attributes and area
+//!   limits), across the same chains.
 
 mod area;
 mod boundary;
@@ -34,12 +36,14 @@ pub(crate) mod chains;
 mod crossings;
 mod holes;
 mod input;
+mod regions;
 mod topology;
 pub(super) mod vertices;
 mod violation;
 mod winding;
 
 pub(crate) use boundary::boundary_loops;
+pub use regions::triangle_regions;
 pub(crate) use topology::{topology, DirectedEdge, Topology};
 pub use violation::{Numbering, Violation};
 

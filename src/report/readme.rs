@@ -95,7 +95,8 @@ pub fn render(
          30°–90°; `saalfeld` conforming with zero exact Delaunay violations; `lsb` every \
          angle at least half the smallest angle of the initial triangle it lies in, paper 003 \
          Sec. 4). The reference meshers ({}) are asked for a {}° minimum angle and checked \
-         against it.\n",
+         against it; `gmsh` and `cgal-conforming` promise no angle and are checked for \
+         validity and conformity (and `cgal-conforming` for the Delaunay property).\n",
         facts.references.join(", "),
         facts.reference_request
     );
@@ -317,14 +318,17 @@ pub fn render(
             let _ = writeln!(
                 md,
                 "![scaling]({stem}.svg)\n\nMeshing time and triangle count against input \
-                 points on log-log axes; the legend gives the fitted exponent b of ∝ n^b \
-                 (least squares on the logs). The paper's implementation is O(n²) (Sec. 8).\n"
+                 points on log-log axes, from plane-1k up (plane-10k and plane-100k in every \
+                 report; `--scaling` adds plane-1m), for the runs that finished within the \
+                 time limit; the legend gives the fitted exponent b of ∝ n^b (least squares on \
+                 the logs). The paper's implementation is O(n²) (Sec. 8).\n"
             );
         }
         None => md.push_str(
-            "Not run: `hexmesh report --scaling` adds plane-10k, plane-100k and plane-1m and \
-             draws `scaling.svg/.png` (time and triangles against points, log-log, with the \
-             fitted exponent).\n",
+            "Not drawn: it needs two plane-* datasets from plane-1k up (a report without \
+             `--datasets` runs plane-1k to plane-100k; `hexmesh report --scaling` adds \
+             plane-1m) and draws `scaling.svg/.png` (time and triangles against points, \
+             log-log, with the fitted exponent).\n",
         ),
     }
     if !art.problems.is_empty() {

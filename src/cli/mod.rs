@@ -83,6 +83,11 @@ struct ReportArgs {
     /// Skip the max-angle protocol (Table 1's reference columns).
     #[arg(long)]
     no_max_angle: bool,
+    /// Triangle's command-line switches for the triangle rows of results.csv and pslg.csv
+    /// (as `mesh --triangle-switches`; without q, which the report sets), recorded in their
+    /// settings column.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    triangle_switches: Option<String>,
 }
 
 #[derive(Args)]
@@ -144,6 +149,12 @@ struct MeshArgs {
     /// Requested maximum triangle area.
     #[arg(long)]
     max_area: Option<f64>,
+    /// Triangle's command-line switches (e.g. q25D), passed to the triangle mesher as given
+    /// after its fixed pzAQa (README "Meshers"); refused for other meshers, and j, r and the
+    /// switches that change what Triangle outputs are refused. A q or a number after a here
+    /// cannot be combined with --min-angle or --max-area.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    triangle_switches: Option<String>,
     /// Our meshers (hex, hex-simple, rhomb) refuse an input, naming its two closest points,
     /// rather than hand out a mesh that rounding to f64 moves beyond a bound by more than
     /// this many degrees (README "Checks").
@@ -252,6 +263,7 @@ fn run(command: Command) -> Result<ExitCode> {
                 timeout: seconds("--timeout", args.timeout)?,
                 max_angle_timeout: seconds("--max-angle-timeout", args.max_angle_timeout)?,
                 max_angle: !args.no_max_angle,
+                triangle_switches: args.triangle_switches,
                 ..crate::report::ReportOptions::default()
             })?;
             Ok(ExitCode::SUCCESS)
@@ -341,7 +353,9 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
             max_vertices: args.max_vertices,
             max_time: Some(timeout),
         },
+        switches: args.triangle_switches.clone(),
     };
+    check_triangle_switches(mesher.name(), &params)?;
     let exe = crate::isolate::find_exe()?;
     let run = match crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout) {
         Ok(isolated) => isolated.run,
@@ -404,6 +418,20 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         return Ok(ExitCode::from(1));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Refuses `--triangle-switches` for a mesher other than `triangle`, and for `triangle`
+/// switches it refuses or that clash with `--min-angle`/`--max-area`, before a child runs.
+fn check_triangle_switches(mesher: &str, params: &Params) -> Result<()> {
+    if params.switches.is_none() {
+        return Ok(());
+    }
+    if mesher != "triangle" {
+        return Err(Error::Usage(format!(
+            "--triangle-switches passes switches to the triangle mesher, not to {mesher}"
+        )));
+    }
+    crate::reference::triangle::user_switches(params).map(|_| ())
 }
 
 /// Refuses, before anything runs, a `mesh` whose outputs (the `-o` files and the `--hexagons`

@@ -73,9 +73,16 @@ pub(crate) fn check_scale(mesher: &str, domain: &Pslg) -> Result<()> {
     Ok(())
 }
 
+/// Refuses what a reference mesher without options of its own cannot honour: such options
+/// (`Params::switches`, which only `triangle` takes) and the requests `check_request` refuses.
+pub(crate) fn check_params(mesher: &str, params: &Params) -> Result<()> {
+    params.refuse_switches(mesher)?;
+    check_request(mesher, params)
+}
+
 /// Refuses requests no reference mesher can honour: a minimum angle outside [0°, 60°) (no
 /// triangle has all angles above 60°) or a maximum area that is not a positive finite number.
-pub(crate) fn check_params(mesher: &str, params: &Params) -> Result<()> {
+pub(crate) fn check_request(mesher: &str, params: &Params) -> Result<()> {
     if let Some(a) = params.min_angle {
         if !(a.is_finite() && (0.0..60.0).contains(&a)) {
             return Err(Error::mesher(

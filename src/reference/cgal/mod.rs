@@ -238,6 +238,7 @@ impl Mesher for Cgal {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         let (b, s) = self.criteria(params)?;
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
@@ -283,6 +284,7 @@ impl Mesher for CgalConforming {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
         let start = Instant::now();

@@ -536,6 +536,7 @@ impl Mesher for Saalfeld {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         Ok(self.refine(input, params)?.run)
     }
 }

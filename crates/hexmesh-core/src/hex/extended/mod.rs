@@ -188,6 +188,7 @@ impl Mesher for Hex {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         let start = Instant::now();
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
         if input.has_segments() {

@@ -6,7 +6,8 @@
 //!
 //! - `cgal`, `cgal-conforming`: CGAL's 2D Delaunay mesher through `cxx` (feature `cgal`).
 //! - `spade`: spade's constrained Delaunay refinement (Ruppert/Chew style).
-//! - `triangle`: Shewchuk's Triangle through the `tritet` crate.
+//! - `triangle`: Shewchuk's Triangle, its `triangulate()` called directly (the C code compiled
+//!   by the `tritet` crate), with the input's regions and the user's switches.
 //! - `gmsh`: Gmsh's Frontal-Delaunay 2D mesher, Debian's `gmsh` program run on a `.geo`
 //!   script of the domain; no angle bound (its promise is validity).
 

@@ -275,3 +275,32 @@ fn refused_switches_and_switches_for_another_mesher_exit_2_naming_them() {
         "a refused run wrote a mesh"
     );
 }
+
+#[test]
+fn report_rows_of_triangle_record_the_switches_sent_and_other_rows_do_not() {
+    std::env::set_var("HEXMESH_EXE", env!("CARGO_BIN_EXE_hexmesh"));
+    let out = temp("report");
+    let _ = std::fs::remove_dir_all(&out);
+    let opts = hexmesh::report::ReportOptions {
+        datasets: vec!["pslg-holes".to_string()],
+        meshers: vec!["triangle".to_string(), "spade".to_string()],
+        runs: 1,
+        out: out.clone(),
+        timeout: Duration::from_secs(60),
+        max_angle: false,
+        triangle_switches: Some("D".to_string()),
+        ..hexmesh::report::ReportOptions::default()
+    };
+    hexmesh::report::run_report(&opts).unwrap();
+    let mut rd = csv::Reader::from_path(out.join("pslg.csv")).unwrap();
+    let header = rd.headers().unwrap().clone();
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (mesher, settings, err) = (col("mesher"), col("settings"), col("err"));
+    let rows: Vec<csv::StringRecord> = rd.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 2);
+    for r in &rows {
+        assert_eq!(&r[err], "", "{r:?}");
+        let sent = r[settings].contains("triangulate(\"pzAQaq30D\")");
+        assert_eq!(sent, &r[mesher] == "triangle", "{r:?}");
+    }
+}

@@ -150,7 +150,7 @@ struct MeshArgs {
     #[arg(long)]
     max_area: Option<f64>,
     /// Triangle's command-line switches (e.g. q25D), passed to the triangle mesher as given
-    /// after its fixed pzAQa (README "Meshers"); refused for other meshers, and j, r and the
+    /// after its fixed pzAQa (README "Command line"); refused for other meshers, and j, r and the
     /// switches that change what Triangle outputs are refused. A q or a number after a here
     /// cannot be combined with --min-angle or --max-area.
     #[arg(long, value_name = "S", allow_hyphen_values = true)]

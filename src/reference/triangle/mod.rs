@@ -338,6 +338,49 @@ mod tests {
         assert!(TriangleMesher.mesh(&input, &Params::default()).is_err());
     }
 
+    /// The unit square as one region with `attribute` and `max_area`.
+    fn square_region(attribute: f64, max_area: Option<f64>) -> Pslg {
+        Pslg {
+            points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+            labels: Labels {
+                regions: vec![Region {
+                    point: [0.5, 0.5],
+                    attribute,
+                    max_area,
+                }],
+                ..Labels::default()
+            },
+            ..Pslg::default()
+        }
+    }
+
+    fn largest_area(run: &MeshRun) -> f64 {
+        (0..run.mesh.triangles.len())
+            .map(|t| {
+                let [a, b, c] = run.mesh.corners(t);
+                0.5 * crate::geom::orient2d(a, b, c)
+            })
+            .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn a_region_without_an_area_is_bounded_by_its_attribute_as_triangle_reads_it() {
+        let run = TriangleMesher
+            .mesh(&square_region(0.02, None), &Params::default())
+            .unwrap();
+        let largest = largest_area(&run);
+        assert!(
+            largest <= 0.02 && run.mesh.triangles.len() >= 50,
+            "{largest}"
+        );
+        // A bound of zero or less is no bound, in Triangle's words "unconstrained".
+        let free = TriangleMesher
+            .mesh(&square_region(0.02, Some(0.0)), &Params::default())
+            .unwrap();
+        assert!(largest_area(&free) > 0.02, "{}", largest_area(&free));
+    }
+
     #[test]
     fn a_region_with_a_non_finite_value_is_refused_before_triangle_sees_it() {
         let mut input = Pslg {

@@ -7,8 +7,9 @@
 //!
 //! request  = "HXMI" u32:version str:mesher params pslg
 //! params   = opt<f64>:min_angle opt<f64>:max_area opt<u64>:max_steps opt<u64>:max_vertices
-//!            opt<(u64 secs, u32 nanos)>:max_time opt<f64>:max_rounding
+//!            opt<(u64 secs, u32 nanos)>:max_time opt<f64>:max_rounding opt<str>:switches
 //! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64,f64,f64)>:hexagon (centre, circumradius, turn)
+//!            u64:r (f64 x, f64 y, f64 attribute, opt<f64>:max_area)×r  (the regions)
 //! answer   = payload u64:payload_len "HXMRESLT"
 //! payload  = 0u8 u8:complete opt<str>:stop_reason u64:steps u64:secs u32:nanos u64:peak_rss
 //!            u64:nv (f64, f64)×nv u64:nt (u32, u32, u32)×nt
@@ -30,7 +31,7 @@ use std::time::{Duration, Instant};
 
 use crate::error::{Error, InputError, Result};
 use crate::geom::{Hexagon, Turn};
-use crate::mesh::{Pslg, TriMesh};
+use crate::mesh::{Labels, Pslg, Region, TriMesh};
 use crate::mesher::{Budget, MeshRun, Params, StopReason};
 use crate::registry;
 
@@ -39,7 +40,7 @@ pub const CHILD_COMMAND: &str = "__run-mesher";
 
 const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
 const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
-const VERSION: u32 = 3;
+const VERSION: u32 = 4;
 /// How much of the child's stderr and stdout an error quotes.
 const TAIL_BYTES: usize = 2000;
 
@@ -393,6 +394,7 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
         put_u32(b, d.subsec_nanos());
     });
     put_opt(&mut b, params.max_rounding, put_f64);
+    put_opt(&mut b, params.switches.as_deref(), put_str);
     put_u64(&mut b, input.points.len() as u64);
     for p in &input.points {
         put_f64(&mut b, p[0]);
@@ -415,6 +417,13 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
         put_f64(b, h.turn.cos);
         put_f64(b, h.turn.sin);
     });
+    put_u64(&mut b, input.labels.regions.len() as u64);
+    for r in &input.labels.regions {
+        put_f64(&mut b, r.point[0]);
+        put_f64(&mut b, r.point[1]);
+        put_f64(&mut b, r.attribute);
+        put_opt(&mut b, r.max_area, put_f64);
+    }
     b
 }
 
@@ -629,6 +638,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
         None
     };
     let max_rounding = if r.flag()? { Some(r.f64()?) } else { None };
+    let switches = if r.flag()? { Some(r.str()?) } else { None };
     let points = r.points()?;
     let m = r.count(8)?;
     let segments = (0..m)
@@ -647,6 +657,17 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     } else {
         None
     };
+    // x, y, attribute and the absence flag at least.
+    let nr = r.count(25)?;
+    let regions = (0..nr)
+        .map(|_| {
+            Ok(Region {
+                point: [r.f64()?, r.f64()?],
+                attribute: r.f64()?,
+                max_area: if r.flag()? { Some(r.f64()?) } else { None },
+            })
+        })
+        .collect::<Result<Vec<_>>>()?;
     r.finish()?;
     let params = Params {
         min_angle,
@@ -657,14 +678,19 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
             max_vertices,
             max_time,
         },
+        switches,
     };
-    // The labels stay in the parent, which writes the mesh: no mesher reads them.
+    // The other labels stay in the parent, which writes the mesh; the regions travel, since
+    // `triangle` meshes with their area limits.
     let input = Pslg {
         points,
         segments,
         holes,
         hexagon,
-        ..Pslg::default()
+        labels: Labels {
+            regions,
+            ..Labels::default()
+        },
     };
     Ok((name, input, params))
 }
@@ -862,16 +888,51 @@ mod tests {
                     sin: -0.8,
                 },
             }),
-            ..Pslg::default()
+            labels: Labels {
+                regions: vec![
+                    Region {
+                        point: [0.5, 0.25],
+                        attribute: 1.0 / 3.0,
+                        max_area: Some(0.01),
+                    },
+                    Region {
+                        point: [0.125, -0.0],
+                        attribute: 0.5,
+                        max_area: None,
+                    },
+                ],
+                ..Labels::default()
+            },
         };
-        let mut params = Params::default().with_min_angle(30.25);
+        let mut params = Params::default()
+            .with_min_angle(30.25)
+            .with_switches("q25DS100 ünï");
         params.budget.max_time = Some(Duration::from_millis(1500));
         params.budget.max_vertices = Some(77);
-        let buf = encode_request("spade", &input, &params);
+        let buf = encode_request("triangle", &input, &params);
         let (name, back, p) = decode_request(&buf).unwrap();
-        assert_eq!(name, "spade");
+        assert_eq!(name, "triangle");
         assert_eq!(p, params);
+        assert_eq!(p.switches.as_deref(), Some("q25DS100 ünï"));
         assert_eq!(back.segments, input.segments);
+        assert_eq!(back.labels.regions, input.labels.regions);
+        let region_bits = |v: &[Region]| {
+            v.iter()
+                .flat_map(|r| {
+                    [
+                        r.point[0],
+                        r.point[1],
+                        r.attribute,
+                        r.max_area.unwrap_or(-1.0),
+                    ]
+                })
+                .map(f64::to_bits)
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(
+            region_bits(&back.labels.regions),
+            region_bits(&input.labels.regions)
+        );
         let bits = |v: &[[f64; 2]]| {
             v.iter()
                 .flat_map(|p| p.map(f64::to_bits))
@@ -916,10 +977,11 @@ mod tests {
             assert!(decode_request(&buf[..cut]).is_err(), "cut at {cut}");
         }
         let mut huge = buf.clone();
-        // The point count sits right after magic, version, name and five absent options.
-        let at = 4 + 4 + 4 + 5 + 5;
+        // The point count sits right after magic, version, name and seven absent options.
+        let at = 4 + 4 + 4 + 5 + 7;
         huge[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
-        assert!(decode_request(&huge).is_err());
+        let e = decode_request(&huge).unwrap_err().to_string();
+        assert!(e.contains("exceeds the message"), "{e}");
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! A .poly's regional area limits are kept or refused, never ignored: the meshers with size
-//! control (cgal, spade, lsb by the smallest limit everywhere) keep every region's limit and
-//! say so in their promise, which `verify` checks triangle by triangle; the meshers without
-//! it refuse the input naming the region. The check itself fails a triangle over its limit.
+//! control (triangle per region, cgal, spade and lsb by the smallest limit everywhere) keep
+//! every region's limit and say so in their promise, which `verify` checks triangle by
+//! triangle; the meshers without it refuse the input naming the region. The check itself
+//! fails a triangle over its limit.
 
 use hexmesh::quality::{verdict, Bounds, Status};
 use hexmesh::{mesher, Params, Pslg, Region, TriMesh};
@@ -47,7 +48,7 @@ fn area_row(v: &hexmesh::quality::Verdict) -> &hexmesh::quality::Check {
 
 #[test]
 fn meshers_with_size_control_keep_every_regions_area_limit() {
-    for name in ["cgal", "spade", "lsb"] {
+    for name in ["triangle", "cgal", "spade", "lsb"] {
         for attribute_only in [false, true] {
             let input = two_squares(attribute_only);
             let m = mesher(name).expect(name);

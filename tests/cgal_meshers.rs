@@ -396,7 +396,9 @@ fn step_and_vertex_budgets_stop_refinement_where_they_say() {
         max_steps: Some(25),
         ..Budget::default()
     };
-    let run = Cgal.mesh(&input, &params.with_budget(steps)).unwrap();
+    let run = Cgal
+        .mesh(&input, &params.clone().with_budget(steps))
+        .unwrap();
     assert!(!run.complete);
     assert_eq!(run.steps, 25);
     assert!(run.stop_reason.unwrap().to_string().contains("step budget"));

@@ -170,7 +170,7 @@ fn max_angle_prints_a_row_and_json() {
     // The effective settings of the last good request: Triangle's switch string at that angle.
     let settings = v["settings"].as_str().expect("settings");
     assert!(
-        settings.contains(&format!("triangulate(\"pzAQaq{angle:.15}\")"))
+        settings.contains(&format!("triangulate(\"pzAQaq{angle}\")"))
             && settings.contains("2s timeout"),
         "{settings}"
     );

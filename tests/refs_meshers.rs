@@ -137,19 +137,20 @@ fn max_area_is_honoured_by_both_references() {
 }
 
 #[test]
-fn triangle_settings_spell_tritets_effective_switches() {
+fn triangle_settings_spell_the_switches_sent() {
     let params = Params::default().with_min_angle(30.0);
-    assert_eq!(
-        triangle_switches(&params).unwrap(),
-        "pzAQaq30.000000000000000"
-    );
+    assert_eq!(triangle_switches(&params).unwrap(), "pzAQaq30");
     let settings = mesher("triangle").unwrap().settings(&params);
-    assert_eq!(settings, "triangulate(\"pzAQaq30.000000000000000\")");
+    assert_eq!(settings, "triangulate(\"pzAQaq30\")");
     let bare = mesher("triangle").unwrap().settings(&Params::default());
     assert!(
         bare.contains("\"pzAQaq\"") && bare.contains("20°"),
         "{bare}"
     );
+    let user = mesher("triangle")
+        .unwrap()
+        .settings(&Params::default().with_switches("q25D"));
+    assert_eq!(user, "triangulate(\"pzAQaq25D\")");
 }
 
 #[test]

@@ -83,6 +83,11 @@ struct ReportArgs {
     /// Skip the max-angle protocol (Table 1's reference columns).
     #[arg(long)]
     no_max_angle: bool,
+    /// Triangle's command-line switches for the triangle rows of results.csv and pslg.csv
+    /// (as `mesh --triangle-switches`; without q, which the report sets), recorded in their
+    /// settings column.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    triangle_switches: Option<String>,
 }
 
 #[derive(Args)]
@@ -144,6 +149,12 @@ struct MeshArgs {
     /// Requested maximum triangle area.
     #[arg(long)]
     max_area: Option<f64>,
+    /// Triangle's command-line switches (e.g. q25D), passed to the triangle mesher as given
+    /// after its fixed pzAQa (README "Command line"); refused for other meshers, and j, r and the
+    /// switches that change what Triangle outputs are refused. A q or a number after a here
+    /// cannot be combined with --min-angle or --max-area.
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    triangle_switches: Option<String>,
     /// Our meshers (hex, hex-simple, rhomb) refuse an input, naming its two closest points,
     /// rather than hand out a mesh that rounding to f64 moves beyond a bound by more than
     /// this many degrees (README "Checks").
@@ -252,6 +263,7 @@ fn run(command: Command) -> Result<ExitCode> {
                 timeout: seconds("--timeout", args.timeout)?,
                 max_angle_timeout: seconds("--max-angle-timeout", args.max_angle_timeout)?,
                 max_angle: !args.no_max_angle,
+                triangle_switches: args.triangle_switches,
                 ..crate::report::ReportOptions::default()
             })?;
             Ok(ExitCode::SUCCESS)
@@ -341,7 +353,9 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
             max_vertices: args.max_vertices,
             max_time: Some(timeout),
         },
+        switches: args.triangle_switches.clone(),
     };
+    check_triangle_switches(mesher.name(), &params)?;
     let exe = crate::isolate::find_exe()?;
     let run = match crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout) {
         Ok(isolated) => isolated.run,
@@ -406,6 +420,20 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// Refuses `--triangle-switches` for a mesher other than `triangle`, and for `triangle`
+/// switches it refuses or that clash with `--min-angle`/`--max-area`, before a child runs.
+fn check_triangle_switches(mesher: &str, params: &Params) -> Result<()> {
+    if params.switches.is_none() {
+        return Ok(());
+    }
+    if mesher != "triangle" {
+        return Err(Error::Usage(format!(
+            "--triangle-switches passes switches to the triangle mesher, not to {mesher}"
+        )));
+    }
+    crate::reference::triangle::user_switches(params).map(|_| ())
+}
+
 /// Refuses, before anything runs, a `mesh` whose outputs (the `-o` files and the `--hexagons`
 /// picture) would replace a file INPUT is read from (`io::input_files`). The mesh files are
 /// written all or nothing by `io::write_mesh`.
@@ -440,13 +468,16 @@ fn failed_promise(
 }
 
 /// The `verify --bounds` name that checks what `bounds` check: `min-angle=DEG` when that is
-/// all they are (a reference's promise, which its own name gives only at its default angle),
-/// otherwise the mesher's name.
+/// all they are besides area limits (a reference's promise, which its own name gives only at
+/// its default angle), otherwise the mesher's name. (No name carries an area limit asked for
+/// on the command line; the first problem `mesh` prints names a failed one.)
 fn verify_name(bounds: &Bounds) -> String {
     if let Some(angle) = bounds.min_angle {
         let generic = format!("min-angle={angle}");
         let as_generic = Bounds {
             name: generic.clone(),
+            max_area: None,
+            region_area_limits: false,
             ..bounds.clone()
         };
         if Bounds::named(&generic).is_ok_and(|g| g == as_generic) {

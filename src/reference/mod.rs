@@ -6,7 +6,8 @@
 //!
 //! - `cgal`, `cgal-conforming`: CGAL's 2D Delaunay mesher through `cxx` (feature `cgal`).
 //! - `spade`: spade's constrained Delaunay refinement (Ruppert/Chew style).
-//! - `triangle`: Shewchuk's Triangle through the `tritet` crate.
+//! - `triangle`: Shewchuk's Triangle, its `triangulate()` called directly (the C code compiled
+//!   by the `tritet` crate), with the input's regions and the user's switches.
 //! - `gmsh`: Gmsh's Frontal-Delaunay 2D mesher, Debian's `gmsh` program run on a `.geo`
 //!   script of the domain; no angle bound (its promise is validity).
 
@@ -73,9 +74,16 @@ pub(crate) fn check_scale(mesher: &str, domain: &Pslg) -> Result<()> {
     Ok(())
 }
 
+/// Refuses what a reference mesher without options of its own cannot honour: such options
+/// (`Params::switches`, which only `triangle` takes) and the requests `check_request` refuses.
+pub(crate) fn check_params(mesher: &str, params: &Params) -> Result<()> {
+    params.refuse_switches(mesher)?;
+    check_request(mesher, params)
+}
+
 /// Refuses requests no reference mesher can honour: a minimum angle outside [0°, 60°) (no
 /// triangle has all angles above 60°) or a maximum area that is not a positive finite number.
-pub(crate) fn check_params(mesher: &str, params: &Params) -> Result<()> {
+pub(crate) fn check_request(mesher: &str, params: &Params) -> Result<()> {
     if let Some(a) = params.min_angle {
         if !(a.is_finite() && (0.0..60.0).contains(&a)) {
             return Err(Error::mesher(

@@ -150,7 +150,7 @@ impl Mesher for SpadeMesher {
         // The regions' area limits are kept with the smallest of them everywhere.
         let params = &Params {
             max_area: input.smallest_area_limit(params.max_area),
-            ..*params
+            ..params.clone()
         };
         let domain = input.reference_domain();
         let start = Instant::now();

@@ -28,17 +28,21 @@ pub(super) struct Outcome {
 /// Meshes `input` with `mesher` `runs` times, each in a child of `exe` killed after
 /// `timeout`, and checks the first mesh against what the mesher promises for the parameters
 /// of the run (`Mesher::promise`: for a reference, the minimum angle it was asked for).
+/// `triangle_switches` go to the `triangle` mesher alone (`Params::switches`).
 pub(super) fn run_case(
     exe: &Path,
     mesher: &dyn Mesher,
-    dataset: &str,
-    input: &Pslg,
+    (dataset, input): (&str, &Pslg),
     runs: usize,
     timeout: Duration,
+    triangle_switches: Option<&str>,
 ) -> Outcome {
     let name = mesher.name();
     let mut row = Row::empty(dataset, input.points.len(), name, &mesher.version());
-    let (params, asked) = case_params(name);
+    let (mut params, asked) = case_params(name);
+    if name == "triangle" {
+        params.switches = triangle_switches.map(str::to_string);
+    }
     row.params = asked;
     row.settings = one_line(&mesher.settings(&params));
     let mut outcome = Outcome {

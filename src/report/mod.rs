@@ -85,6 +85,9 @@ pub struct ReportOptions {
     /// Runs the max-angle protocol for `table1.md`; without it the references' Table 1 cells
     /// say "not run".
     pub max_angle: bool,
+    /// Triangle's switches for the `triangle` rows of `results.csv` and `pslg.csv`
+    /// (`Params::switches`); without a `q`, since the report asks for its own angle.
+    pub triangle_switches: Option<String>,
 }
 
 impl Default for ReportOptions {
@@ -100,6 +103,7 @@ impl Default for ReportOptions {
             max_angle_start: 20.0,
             max_angle_timeout: Duration::from_secs(10),
             max_angle: true,
+            triangle_switches: None,
         }
     }
 }

@@ -120,15 +120,15 @@ pub fn pslg_rows(
     exe: &Path,
     examples: &[PslgExample],
     meshers: &[&dyn Mesher],
-    runs: usize,
-    timeout: Duration,
+    (runs, timeout): (usize, Duration),
+    triangle_switches: Option<&str>,
     mut progress: impl FnMut(&str),
 ) -> Vec<PslgRow> {
     let mut rows = Vec::with_capacity(examples.len() * meshers.len());
     for e in examples {
         for m in meshers {
             progress(&format!("{} × {}", e.name, m.name()));
-            let outcome = run_case(exe, *m, e.name, &e.pslg, runs, timeout);
+            let outcome = run_case(exe, *m, (e.name, &e.pslg), runs, timeout, triangle_switches);
             rows.push(row_of(e, &outcome.row, outcome.verdict.as_ref()));
         }
     }

@@ -89,7 +89,14 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         let mut series = Vec::new();
         for m in &meshers {
             progress.start(&format!("{name} × {}", m.name()));
-            let outcome = run_case(&exe, m.as_ref(), name, input, opts.runs, opts.timeout);
+            let outcome = run_case(
+                &exe,
+                m.as_ref(),
+                (name, input),
+                opts.runs,
+                opts.timeout,
+                opts.triangle_switches.as_deref(),
+            );
             progress.finish_step(&summary(&outcome.row));
             if let Some(h) = &outcome.histogram {
                 series.push(AngleSeries {
@@ -228,8 +235,8 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
                 &exe,
                 &examples,
                 &segment_meshers,
-                opts.runs,
-                opts.timeout,
+                (opts.runs, opts.timeout),
+                opts.triangle_switches.as_deref(),
                 step,
             )
         });
@@ -262,6 +269,19 @@ fn check_options(opts: &ReportOptions) -> Result<()> {
             "the max-angle step {} must be a positive number of degrees",
             opts.max_angle_step
         )));
+    }
+    if let Some(switches) = &opts.triangle_switches {
+        // Checked as the triangle rows will send them, beside the report's own angle.
+        let params = super::case_params("triangle")
+            .0
+            .with_switches(switches.as_str());
+        crate::reference::triangle::user_switches(&params).map_err(|e| match e {
+            Error::Usage(m) => Error::Usage(format!(
+                "{m} (the report asks triangle for {}°)",
+                super::REFERENCE_MIN_ANGLE
+            )),
+            other => other,
+        })?;
     }
     Ok(())
 }
@@ -559,6 +579,21 @@ mod tests {
         assert!(w[0] > 1.5, "{w:?}");
         let plane = datasets::by_name("plane-100").unwrap();
         assert!(zoom_window("plane-100", &plane).is_none());
+    }
+
+    #[test]
+    fn report_triangle_switches_are_checked_beside_the_reports_own_angle() {
+        let with = |s: &str| ReportOptions {
+            triangle_switches: Some(s.to_string()),
+            ..ReportOptions::default()
+        };
+        assert!(check_options(&with("Da0.5")).is_ok());
+        for bad in ["q25", "j"] {
+            match check_options(&with(bad)) {
+                Err(Error::Usage(m)) => assert!(m.contains(bad) && m.contains("30"), "{m}"),
+                other => panic!("{bad}: {other:?}"),
+            }
+        }
     }
 
     #[test]

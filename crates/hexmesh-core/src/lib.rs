@@ -145,7 +145,7 @@ impl Method {
 }
 
 /// What [`mesh_domain`] is asked for: the mesher and its parameters.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Options {
     /// The mesher.
     pub method: Method,

@@ -18,8 +18,9 @@ pub struct Pslg {
     /// (`Hexagon::fitted`). Ignored when the input has segments.
     pub hexagon: Option<Hexagon>,
     /// What a Triangle `.node`/`.poly` input says about its items beyond geometry: point
-    /// markers and attributes, segment markers, regions. No mesher reads them; the writers
-    /// carry them to the output mesh (`io::write_mesh_with`). Empty by default.
+    /// markers and attributes, segment markers, regions. The meshers read only the regions'
+    /// area limits (kept or refused: [`Region::area_limit`]); the writers carry all of them to
+    /// the output mesh (`io::write_mesh_with`). Empty by default.
     pub labels: Labels,
 }
 
@@ -28,8 +29,10 @@ pub struct Pslg {
 /// an absent column is `None` (markers) or empty (attributes, regions), and a point set read
 /// from a `.node` file without markers has `Labels::default()`.
 ///
-/// The labels sit beside the geometry in [`Pslg`] rather than in it, so that every mesher,
-/// `Pslg::from_points` and `Pslg::check` see the same input as before: they ignore this field.
+/// The labels sit beside the geometry in [`Pslg`] rather than in it, so that the meshers,
+/// `Pslg::from_points` and `Pslg::check` see the same geometry as without them; a mesher reads
+/// only the regions' area limits (`triangle` per region, the others with size control the
+/// smallest, the rest refuse them).
 /// The output mesh gets its labels from its input afterwards, by position (an input point is
 /// the mesh vertex with its exact coordinates; a segment is the chain of mesh edges along it),
 /// in `io::boundary`.

@@ -3,7 +3,7 @@
 
 use std::time::Duration;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::Bounds;
 
@@ -23,8 +23,8 @@ pub struct Budget {
 }
 
 /// What a mesher is asked for. Meshers ignore what does not apply to them and say so in
-/// `Mesher::settings`.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+/// `Mesher::settings`. Not `Copy`: it carries the mesher's own option string.
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Params {
     /// Requested minimum angle in degrees (references; our meshers have fixed bounds).
     pub min_angle: Option<f64>,
@@ -35,6 +35,9 @@ pub struct Params {
     pub max_rounding: Option<f64>,
     /// The limits every refinement loop stops at (none by default).
     pub budget: Budget,
+    /// The mesher's own options, passed through as given (Triangle's command-line switches
+    /// for `triangle`); a mesher without such options refuses them (`refuse_switches`).
+    pub switches: Option<String>,
 }
 
 impl Params {
@@ -65,6 +68,23 @@ impl Params {
     pub fn with_budget(mut self, budget: Budget) -> Params {
         self.budget = budget;
         self
+    }
+
+    /// These parameters passing the mesher its own options `switches`.
+    pub fn with_switches(mut self, switches: impl Into<String>) -> Params {
+        self.switches = Some(switches.into());
+        self
+    }
+
+    /// Refuses, as a usage error naming `mesher`, options of its own (`switches`) for a mesher
+    /// that has none: they would otherwise be ignored without a word.
+    pub fn refuse_switches(&self, mesher: &str) -> Result<()> {
+        match &self.switches {
+            Some(s) => Err(Error::Usage(format!(
+                "mesher {mesher} takes no options of its own, but was given the switches \"{s}\""
+            ))),
+            None => Ok(()),
+        }
     }
 }
 
@@ -187,6 +207,17 @@ pub trait Mesher: Send + Sync {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mesher_without_options_refuses_switches_naming_itself_and_them() {
+        assert!(Params::default().refuse_switches("hex").is_ok());
+        let e = Params::default()
+            .with_switches("q25")
+            .refuse_switches("hex")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("hex") && e.contains("q25"), "{e}");
+    }
 
     #[test]
     fn a_stop_reason_names_the_limit_and_its_figure() {

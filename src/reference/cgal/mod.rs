@@ -240,10 +240,11 @@ impl Mesher for Cgal {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         // The regions' area limits are kept with the smallest of them everywhere.
         let params = &Params {
             max_area: input.smallest_area_limit(params.max_area),
-            ..*params
+            ..params.clone()
         };
         let (b, s) = self.criteria(params)?;
         let domain = domain(input);
@@ -291,6 +292,7 @@ impl Mesher for CgalConforming {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         hexmesh_core::mesher::refuse_area_limits(self.name(), input)?;
+        params.refuse_switches(self.name())?;
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
         let start = Instant::now();

@@ -80,6 +80,7 @@ impl Mesher for HexSimple {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         crate::mesher::refuse_area_limits(self.name(), input)?;
+        params.refuse_switches(self.name())?;
         let start = Instant::now();
         let mut h = new_hierarchy(input, params, "hex-simple")?;
         let stop = run_simple(&mut h)?;

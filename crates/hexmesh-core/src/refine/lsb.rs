@@ -766,6 +766,7 @@ impl Mesher for Lsb {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         Ok(self.refine(input, params)?.run)
     }
 }

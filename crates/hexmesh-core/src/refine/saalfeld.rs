@@ -537,6 +537,7 @@ impl Mesher for Saalfeld {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         crate::mesher::refuse_area_limits(self.name(), input)?;
+        params.refuse_switches(self.name())?;
         Ok(self.refine(input, params)?.run)
     }
 }

@@ -74,6 +74,7 @@ impl Mesher for Rhomb {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
         let start = Instant::now();
         input.validate_input()?;
         if input.has_segments() {

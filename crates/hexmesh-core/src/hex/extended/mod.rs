@@ -189,6 +189,7 @@ impl Mesher for Hex {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         crate::mesher::refuse_area_limits(self.name(), input)?;
+        params.refuse_switches(self.name())?;
         let start = Instant::now();
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
         if input.has_segments() {

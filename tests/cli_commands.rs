@@ -13,11 +13,27 @@ fn hexmesh(args: &[&str]) -> Output {
 }
 
 /// A path in this test binary's own scratch directory under target/ (one fixed place, so
-/// that runs overwrite each other's files instead of leaving a copy in /tmp each time).
+/// that runs do not leave a copy in /tmp each time), with the files an earlier run wrote
+/// under it (`NAME.*`) removed, so that a test sees only what its own commands write.
 fn temp(name: &str) -> PathBuf {
-    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_commands");
+    let dir = scratch();
     std::fs::create_dir_all(&dir).expect("temp dir");
-    dir.join(name)
+    let stem = format!("{name}.");
+    for entry in std::fs::read_dir(&dir).expect("read temp dir").flatten() {
+        if entry.file_name().to_string_lossy().starts_with(&stem) {
+            std::fs::remove_file(entry.path()).expect("remove an earlier run's file");
+        }
+    }
+    let path = dir.join(name);
+    if path.is_dir() {
+        std::fs::remove_dir_all(&path).expect("remove an earlier run's directory");
+    }
+    path
+}
+
+/// This test binary's scratch directory under target/.
+fn scratch() -> PathBuf {
+    PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("cli_commands")
 }
 
 fn text(out: &Output) -> String {
@@ -118,7 +134,7 @@ fn every_pslg_example_meshes_and_verifies_by_name() {
     }
     // --input resolves the name to that example, not to any PSLG: against another one the
     // holes mesh misses input points and covers a hole seed.
-    let p = temp("pslg-holes-hex");
+    let p = scratch().join("pslg-holes-hex");
     let p = p.to_str().expect("utf-8");
     let out = hexmesh(&["verify", p, "--input", "pslg-nested", "--bounds", "hex"]);
     assert_eq!(out.status.code(), Some(1), "{}", text(&out));

@@ -75,7 +75,7 @@ struct ReportArgs {
     #[arg(long, default_value = "reports")]
     out: PathBuf,
     /// Seconds one meshing call may take before it becomes an error row.
-    #[arg(long, default_value_t = 60.0)]
+    #[arg(long, default_value_t = 180.0)]
     timeout: f64,
     /// Seconds each request of the max-angle protocol may take.
     #[arg(long, default_value_t = 10.0)]

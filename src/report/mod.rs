@@ -98,7 +98,7 @@ impl Default for ReportOptions {
             runs: 3,
             scaling: false,
             out: PathBuf::from("reports"),
-            timeout: Duration::from_secs(60),
+            timeout: Duration::from_secs(180),
             max_angle_step: 0.25,
             max_angle_start: 20.0,
             max_angle_timeout: Duration::from_secs(10),

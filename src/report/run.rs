@@ -87,13 +87,19 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
 
     for (name, input) in &inputs {
         let mut series = Vec::new();
+        // The scaling series is timed once: a run of plane-100k takes up to a minute and more.
+        let runs = if datasets::SCALING.contains(&name.as_str()) {
+            1
+        } else {
+            opts.runs
+        };
         for m in &meshers {
             progress.start(&format!("{name} × {}", m.name()));
             let outcome = run_case(
                 &exe,
                 m.as_ref(),
                 (name, input),
-                opts.runs,
+                runs,
                 opts.timeout,
                 opts.triangle_switches.as_deref(),
             );

@@ -21,7 +21,8 @@ use std::collections::HashMap;
 
 use crate::geom::{orient2d_scaled, Point};
 use crate::mesh::{Pslg, TriMesh};
-use crate::quality::validate::chains::{input_vertices, segment_chain, Adjacency};
+use crate::quality::validate::chains::{input_vertices, walk_segments, Adjacency};
+use crate::quality::validate::regions_across;
 use crate::quality::validate::{boundary_loops, topology};
 
 /// One edge of the mesh, with what the writers say about it.
@@ -136,26 +137,15 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     let vertex_of = input.map_or_else(Vec::new, |i| input_vertices(mesh, i));
     if let Some(input) = input.filter(|i| i.has_segments()) {
         let adjacency = Adjacency::new(mesh, &topo.usable);
-        for (s, seg) in input.segments.iter().enumerate() {
-            let (ia, ib) = (seg[0] as usize, seg[1] as usize);
-            let (Some(&pa), Some(&pb)) = (input.points.get(ia), input.points.get(ib)) else {
-                continue;
-            };
-            let (Some(va), Some(vb)) = (vertex_of[ia], vertex_of[ib]) else {
-                continue;
-            };
-            let mut walked = segment_chain(mesh, &adjacency, [pa, pb], [va, vb]).edges;
-            if walked.last().is_none_or(|e| e.1 != vb) {
-                // A broken chain: also take what can be walked from the other end.
-                walked.extend(segment_chain(mesh, &adjacency, [pb, pa], [vb, va]).edges);
-            }
-            for (u, w) in walked {
+        for walked in walk_segments(mesh, input, &adjacency, &vertex_of) {
+            let s = walked.segment as u32;
+            for (u, w) in walked.edges {
                 if let Some(e) = edge_of(u, w) {
-                    edges[e].segment.get_or_insert(s as u32);
+                    edges[e].segment.get_or_insert(s);
                 }
-                chain_vertices.extend([(u, s as u32), (w, s as u32)]);
+                chain_vertices.extend([(u, s), (w, s)]);
             }
-            chain_vertices.extend([(va, s as u32), (vb, s as u32)]);
+            chain_vertices.extend(walked.ends.map(|v| (v, s)));
         }
     }
     let segment_marker = |s: u32| {
@@ -224,7 +214,10 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     let (triangle_regions, has_regions) = match input {
         // The flood fill the area-limit check uses too (`quality::triangle_regions`).
         Some(input) if with_regions => {
-            let attributes = crate::quality::triangle_regions(mesh, input)
+            // The segments' edges are known here: no second walk along them.
+            let on_segment =
+                |u: u32, v: u32| edge_of(u, v).is_some_and(|e| edges[e].segment.is_some());
+            let attributes = regions_across(mesh, input, &topo, on_segment)
                 .into_iter()
                 .map(|r| r.map_or(0.0, |k| input.labels.regions[k].attribute))
                 .collect();

@@ -139,3 +139,46 @@ pub(crate) fn segment_chain(
         stuck_at: None,
     }
 }
+
+/// One input segment's edges in the mesh, as [`walk_segments`] finds them.
+pub(crate) struct WalkedSegment {
+    /// The segment's index in the input.
+    pub segment: usize,
+    /// The mesh vertices of its two endpoints.
+    pub ends: [u32; 2],
+    /// The edges walked along it, each directed along the walk that found it.
+    pub edges: Vec<(u32, u32)>,
+}
+
+/// The edges along every input segment whose two endpoints are mesh vertices (`vertex_of`,
+/// from [`input_vertices`]): the chain from the first endpoint and, where it breaks off short
+/// of the second, also what can be walked back from the second, so that a broken chain still
+/// gives all the edges that lie on it.
+pub(crate) fn walk_segments(
+    mesh: &TriMesh,
+    input: &Pslg,
+    adjacency: &Adjacency,
+    vertex_of: &[Option<u32>],
+) -> Vec<WalkedSegment> {
+    let mut out = Vec::with_capacity(input.segments.len());
+    for (s, seg) in input.segments.iter().enumerate() {
+        let (ia, ib) = (seg[0] as usize, seg[1] as usize);
+        let (Some(&pa), Some(&pb)) = (input.points.get(ia), input.points.get(ib)) else {
+            continue;
+        };
+        let (Some(Some(va)), Some(Some(vb))) = (vertex_of.get(ia), vertex_of.get(ib)) else {
+            continue;
+        };
+        let (va, vb) = (*va, *vb);
+        let mut edges = segment_chain(mesh, adjacency, [pa, pb], [va, vb]).edges;
+        if edges.last().is_none_or(|e| e.1 != vb) {
+            edges.extend(segment_chain(mesh, adjacency, [pb, pa], [vb, va]).edges);
+        }
+        out.push(WalkedSegment {
+            segment: s,
+            ends: [va, vb],
+            edges,
+        });
+    }
+    out
+}

@@ -43,6 +43,7 @@ mod violation;
 mod winding;
 
 pub(crate) use boundary::boundary_loops;
+pub(crate) use regions::regions_across;
 pub use regions::triangle_regions;
 pub(crate) use topology::{topology, DirectedEdge, Topology};
 pub use violation::{Numbering, Violation};

@@ -6,40 +6,39 @@
 
 use std::collections::HashSet;
 
-use super::chains::{input_vertices, segment_chain, Adjacency};
-use super::topology;
+use super::chains::{input_vertices, walk_segments, Adjacency};
+use super::{topology, Topology};
 use crate::geom::orient2d_scaled;
 use crate::mesh::{Pslg, TriMesh};
 
 /// The index (in `input.labels.regions`) of the region each triangle lies in; `None` for a
 /// triangle no region reaches, or one with a corner that names no vertex.
 pub fn triangle_regions(mesh: &TriMesh, input: &Pslg) -> Vec<Option<usize>> {
-    let m = mesh.triangles.len();
     if input.labels.regions.is_empty() {
-        return vec![None; m];
+        return vec![None; mesh.triangles.len()];
     }
     let topo = topology(mesh);
-    let key = |a: u32, b: u32| (a.min(b), a.max(b));
-
-    // The edges along the segments.
-    let mut on_segment: HashSet<(u32, u32)> = HashSet::new();
-    let vertex_of = input_vertices(mesh, input);
     let adjacency = Adjacency::new(mesh, &topo.usable);
-    for seg in &input.segments {
-        let (ia, ib) = (seg[0] as usize, seg[1] as usize);
-        let (Some(&pa), Some(&pb)) = (input.points.get(ia), input.points.get(ib)) else {
-            continue;
-        };
-        let (Some(va), Some(vb)) = (vertex_of[ia], vertex_of[ib]) else {
-            continue;
-        };
-        let mut walked = segment_chain(mesh, &adjacency, [pa, pb], [va, vb]).edges;
-        if walked.last().is_none_or(|e| e.1 != vb) {
-            walked.extend(segment_chain(mesh, &adjacency, [pb, pa], [vb, va]).edges);
-        }
-        on_segment.extend(walked.into_iter().map(|(u, w)| key(u, w)));
-    }
+    let vertex_of = input_vertices(mesh, input);
+    let on_segment: HashSet<(u32, u32)> = walk_segments(mesh, input, &adjacency, &vertex_of)
+        .into_iter()
+        .flat_map(|w| w.edges)
+        .map(|(u, w)| (u.min(w), u.max(w)))
+        .collect();
+    regions_across(mesh, input, &topo, |u, v| {
+        on_segment.contains(&(u.min(v), u.max(v)))
+    })
+}
 
+/// [`triangle_regions`] for a caller that has the mesh's topology and knows which edges lie
+/// on segments (`on_segment(u, v)`, either direction), as `io::boundary` does.
+pub(crate) fn regions_across(
+    mesh: &TriMesh,
+    input: &Pslg,
+    topo: &Topology,
+    on_segment: impl Fn(u32, u32) -> bool,
+) -> Vec<Option<usize>> {
+    let m = mesh.triangles.len();
     // Triangles joined across interior edges on no segment (union-find, smaller root wins).
     let mut parent: Vec<usize> = (0..m).collect();
     fn root(parent: &mut [usize], mut t: usize) -> usize {
@@ -50,13 +49,12 @@ pub fn triangle_regions(mesh: &TriMesh, input: &Pslg) -> Vec<Option<usize>> {
         t
     }
     for &(u, v, s, t) in &topo.interior {
-        if on_segment.contains(&key(u, v)) {
+        if on_segment(u, v) {
             continue;
         }
         let (a, b) = (root(&mut parent, s), root(&mut parent, t));
         parent[a.max(b)] = a.min(b);
     }
-
     // Each region's point located in a triangle (on an edge: the first triangle in order).
     let p = |v: u32| mesh.vertices[v as usize];
     let mut region_of_root: Vec<Option<usize>> = vec![None; m];

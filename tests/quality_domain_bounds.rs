@@ -48,6 +48,14 @@ fn rhomb_verdict(input: &Pslg, mesh: &TriMesh) -> Verdict {
     verdict(mesh, Some(input), Some(&bounds))
 }
 
+/// The verdict's row checking `what`.
+fn check<'a>(v: &'a Verdict, what: &str) -> &'a hexmesh::quality::Check {
+    v.checks
+        .iter()
+        .find(|c| c.what == what)
+        .unwrap_or_else(|| panic!("no check '{what}' in\n{v}"))
+}
+
 fn failed(v: &Verdict) -> Vec<String> {
     v.checks
         .iter()
@@ -61,11 +69,7 @@ fn a_sharp_input_corner_kept_whole_passes() {
     let (input, mesh) = two_triangles(60.0, 60.0);
     let v = rhomb_verdict(&input, &mesh);
     assert!(v.passed(), "{v}");
-    let min = v
-        .checks
-        .iter()
-        .find(|c| c.what == "min angle (deg)")
-        .unwrap();
+    let min = check(&v, "min angle (deg)");
     // The 10° corner is left out and said so; the smallest angle counted is the 60°.
     assert!((min.value.unwrap() - 60.0).abs() < 1e-9, "{v}");
     assert!(
@@ -88,11 +92,7 @@ fn a_split_ten_degree_corner_fails() {
     mesh.triangles = vec![[0, 1, 4], [0, 4, 3], [1, 2, 4], [4, 2, 3]];
     let v = rhomb_verdict(&input, &mesh);
     assert_eq!(failed(&v), ["min angle (deg)"], "{v}");
-    let min = v
-        .checks
-        .iter()
-        .find(|c| c.what == "min angle (deg)")
-        .unwrap();
+    let min = check(&v, "min angle (deg)");
     assert!((min.value.unwrap() - 5.0).abs() < 1e-9, "{v}");
 }
 
@@ -102,11 +102,7 @@ fn an_angle_of_90_01_degrees_beside_a_segment_fails() {
     let (input, mesh) = two_triangles(44.995, 44.995);
     let v = rhomb_verdict(&input, &mesh);
     assert_eq!(failed(&v), ["max angle (deg)"], "{v}");
-    let max = v
-        .checks
-        .iter()
-        .find(|c| c.what == "max angle (deg)")
-        .unwrap();
+    let max = check(&v, "max angle (deg)");
     assert!((max.value.unwrap() - 90.01).abs() < 1e-9, "{v}");
 }
 
@@ -116,11 +112,7 @@ fn an_angle_of_29_99_degrees_beside_a_segment_fails() {
     let (input, mesh) = two_triangles(29.99, 75.0);
     let v = rhomb_verdict(&input, &mesh);
     assert_eq!(failed(&v), ["min angle (deg)"], "{v}");
-    let min = v
-        .checks
-        .iter()
-        .find(|c| c.what == "min angle (deg)")
-        .unwrap();
+    let min = check(&v, "min angle (deg)");
     assert!((min.value.unwrap() - 29.99).abs() < 1e-9, "{v}");
 }
 

@@ -303,16 +303,10 @@ impl<'a> Document<'a> {
                 })
                 .collect();
         }
-        let bytes = self.binary(array)?;
-        self.whole(array, &bytes, size)?;
-        Ok(bytes
-            .chunks_exact(size)
-            .map(|c| {
-                let mut b = [0u8; 8];
-                b[..size].copy_from_slice(c);
-                if self.big_endian {
-                    b[..size].reverse();
-                }
+        Ok(self
+            .words(array, size)?
+            .into_iter()
+            .map(|b| {
                 if size == 4 {
                     f64::from(f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
                 } else {
@@ -349,16 +343,9 @@ impl<'a> Document<'a> {
                 })
                 .collect();
         }
-        let bytes = self.binary(array)?;
-        self.whole(array, &bytes, size)?;
-        bytes
-            .chunks_exact(size)
-            .map(|c| {
-                let mut b = [0u8; 8];
-                b[..size].copy_from_slice(c);
-                if self.big_endian {
-                    b[..size].reverse();
-                }
+        self.words(array, size)?
+            .into_iter()
+            .map(|mut b| {
                 let negative = signed && b[size - 1] & 0x80 != 0;
                 if negative {
                     b[size..].fill(0xff);
@@ -372,6 +359,24 @@ impl<'a> Document<'a> {
                 }
             })
             .collect()
+    }
+
+    /// The binary values of `array`, `size` bytes each, as little-endian words in the low
+    /// bytes of 8 (the rest zero), whatever the file's byte order.
+    fn words(&self, array: &Array, size: usize) -> Result<Vec<[u8; 8]>> {
+        let bytes = self.binary(array)?;
+        self.whole(array, &bytes, size)?;
+        Ok(bytes
+            .chunks_exact(size)
+            .map(|c| {
+                let mut b = [0u8; 8];
+                b[..size].copy_from_slice(c);
+                if self.big_endian {
+                    b[..size].reverse();
+                }
+                b
+            })
+            .collect())
     }
 
     fn whole(&self, array: &Array, bytes: &[u8], size: usize) -> Result<()> {

@@ -410,3 +410,31 @@ fn nearly_parallel_segments_and_a_point_beside_a_segment_mesh() {
     p.segments.extend([[b, b + 1], [b + 2, b + 3]]);
     mesh_and_check("close-features", &p);
 }
+
+/// The near-segment repair (`hex::pslg::band`): on every PSLG example each triangle touching a
+/// segment has its angles in [30°, 120°], but an input corner sharper than 30° taken whole
+/// (pslg-wedge-5's 5° corner), and the whole mesh is constrained Delaunay: no exact
+/// empty-circle violation anywhere, on the segments or off them.
+#[test]
+fn the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_circle_violation() {
+    for &name in datasets::PSLG_EXAMPLES {
+        let input = datasets::by_name(name).expect("example");
+        let run = mesh_and_check(name, &input);
+        let within = Bounds {
+            max_angle: Some(120.0),
+            ..Bounds::named("min-angle=30").expect("bounds")
+        };
+        let v = verdict(&run.mesh, Some(&input), Some(&within));
+        assert!(
+            v.passed(),
+            "{name}: {:?}",
+            v.checks
+                .iter()
+                .filter(|c| c.status == hexmesh::quality::Status::Fail)
+                .collect::<Vec<_>>()
+        );
+        let d = verdict(&run.mesh, None, Bounds::named("delaunay").ok().as_ref());
+        assert_eq!(d.metrics.delaunay_violations, 0, "{name}: empty-circle");
+        assert!(run.stats.band_moved + run.stats.band_removed + run.stats.band_inserted > 0);
+    }
+}

@@ -15,6 +15,7 @@
 
 use std::collections::BTreeMap;
 
+use super::band::Band;
 use super::domain::carve;
 use super::fill::fill_cavity;
 use super::flip::flip_interior_cavity_triangles;
@@ -25,6 +26,7 @@ use crate::geom::Point;
 use crate::hex::lattice::{FxHashSet, Key};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::{Pslg, TriMesh};
+use crate::quality::bounds::HEX;
 
 /// The mesh with the segments inserted, before compaction is undone: vertex keys and marks.
 pub(super) struct Built {
@@ -34,8 +36,17 @@ pub(super) struct Built {
     pub keys: Vec<Key>,
     /// For each vertex, true when it lies on an input segment.
     pub on_segment: Vec<bool>,
-    /// For each triangle, true when it comes from the cavity's triangulation.
+    /// For each triangle, true when it is not a triangle of the hexagon dual.
     pub cavity: Vec<bool>,
+}
+
+/// How many points `band` may insert per triangle of the mesh it improves (its budget).
+const BAND_BUDGET_PER_TRIANGLE: u64 = 2;
+
+/// A triangle's corners in a canonical rotation (smallest index first).
+fn canonical(t: [u32; 3]) -> [u32; 3] {
+    let m = (0..3).min_by_key(|&i| t[i]).unwrap_or(0);
+    [t[m], t[(m + 1) % 3], t[(m + 2) % 3]]
 }
 
 /// Removes the dual triangles with a corner in a crossed hexagon, and fills the cavity with a
@@ -144,30 +155,55 @@ pub(super) fn insert_segments(
         .collect();
     let n_kept = triangles.len();
     if !cavity_points.is_empty() {
-        let (mut filled, extra_on) =
-            fill_cavity(&vertices, &cavity_points, &boundary, &chains, input)?;
+        let (filled, extra_on) = fill_cavity(&vertices, &cavity_points, &boundary, &chains, input)?;
         for (v, s) in extra_on {
             if !on[v as usize].contains(&s) {
                 on[v as usize].push(s);
             }
         }
-        let on_seg: Vec<bool> = on.iter().map(|s| !s.is_empty()).collect();
-        stats.flips += flip_interior_cavity_triangles(&vertices, &mut filled, &on_seg);
         triangles.extend(filled);
     }
 
     let on_segment_edge =
         |u: u32, v: u32| on[u as usize].iter().any(|s| on[v as usize].contains(s));
     let keep = carve(&vertices, &triangles, input, on_segment_edge)?;
-    let cavity: Vec<bool> = (0..triangles.len())
-        .filter(|&t| keep[t])
-        .map(|t| t >= n_kept)
-        .collect();
+    let dual_set: FxHashSet<[u32; 3]> = triangles[..n_kept].iter().map(|&t| canonical(t)).collect();
     let triangles: Vec<[u32; 3]> = triangles
         .into_iter()
         .zip(keep)
         .filter(|(_, k)| *k)
         .map(|(t, _)| t)
+        .collect();
+
+    // Quality along the segments (`band`): the constrained Delaunay triangulation, improved
+    // by points on the segments.
+    let d_min = crate::quality::closest_pair(&input.points).map_or(0.0, |c| c.distance);
+    let mut band = Band::new(segments, vertices, on, triangles, n_input)
+        .with_min_edge(HEX.min_edge_over_dmin * d_min);
+    band.make_delaunay();
+    let left = band.improve(BAND_BUDGET_PER_TRIANGLE * band.tris.len() as u64 + 1000);
+    stats.band_inserted += band.inserted;
+    stats.band_removed += band.deleted;
+    stats.band_moved += band.moved;
+    stats.band_flips += band.flips;
+    for &v in &band.origin[keys.len()..] {
+        keys.push(keys[v as usize]);
+    }
+    stats.band_left += left.len() as u64;
+    let mut triangles: Vec<[u32; 3]> = (0..band.tris.len())
+        .filter(|&t| band.alive[t])
+        .map(|t| band.tris[t])
+        .collect();
+    // A triangle off the segments the band could not repair (a notch of three dual
+    // vertices) is flipped towards the segment as before the band existed (`flip`), which
+    // gives up the empty-circle property at that edge rather than the interior bounds.
+    let on_seg: Vec<bool> = band.segs.iter().map(|s| !s.is_empty()).collect();
+    stats.flips += flip_interior_cavity_triangles(&band.verts, &mut triangles, &on_seg);
+    let (vertices, on) = (band.verts, band.segs);
+    let n_all = vertices.len();
+    let cavity: Vec<bool> = triangles
+        .iter()
+        .map(|&t| !dual_set.contains(&canonical(t)))
         .collect();
 
     // Compact, keeping the input points first and in order.

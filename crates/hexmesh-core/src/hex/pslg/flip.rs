@@ -2,7 +2,9 @@
 //! triangle of three fixed centres into a notch of the cavity boundary (30°/109°/41° on imr);
 //! such a triangle touches no segment, counts as interior and breaks the bounds, and
 //! subdividing it only moves the notch (on imr three rounds went from 46k to 660k triangles).
-//! It is flipped instead with its neighbour that has a corner on the segment.
+//! It is flipped instead with its neighbour that has a corner on the segment. Since `band`
+//! repairs most such triangles by points on the segments, this runs last, on the few it
+//! leaves (one on imr, one on a 15° wedge).
 
 use crate::geom::{orient2d, Point};
 use crate::hex::extended::check::breaks_bounds;

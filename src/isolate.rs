@@ -40,7 +40,7 @@ pub const CHILD_COMMAND: &str = "__run-mesher";
 
 const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
 const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
-const VERSION: u32 = 4;
+const VERSION: u32 = 5;
 /// How much of the child's stderr and stdout an error quotes.
 const TAIL_BYTES: usize = 2000;
 
@@ -385,6 +385,7 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
     put_str(&mut b, mesher);
     put_opt(&mut b, params.min_angle, put_f64);
     put_opt(&mut b, params.max_area, put_f64);
+    put_opt(&mut b, params.max_edge, put_f64);
     put_opt(&mut b, params.budget.max_steps, put_u64);
     put_opt(&mut b, params.budget.max_vertices, |b, v| {
         put_u64(b, v as u64)
@@ -621,6 +622,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     let name = r.str()?;
     let min_angle = if r.flag()? { Some(r.f64()?) } else { None };
     let max_area = if r.flag()? { Some(r.f64()?) } else { None };
+    let max_edge = if r.flag()? { Some(r.f64()?) } else { None };
     let max_steps = if r.flag()? { Some(r.u64()?) } else { None };
     let max_vertices = if r.flag()? {
         Some(usize::try_from(r.u64()?).unwrap_or(usize::MAX))
@@ -672,6 +674,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     let params = Params {
         min_angle,
         max_area,
+        max_edge,
         max_rounding,
         budget: Budget {
             max_steps,
@@ -906,6 +909,7 @@ mod tests {
         };
         let mut params = Params::default()
             .with_min_angle(30.25)
+            .with_max_edge(0.125)
             .with_switches("q25DS100 ünï");
         params.budget.max_time = Some(Duration::from_millis(1500));
         params.budget.max_vertices = Some(77);

@@ -146,9 +146,14 @@ struct MeshArgs {
     /// Requested minimum angle in degrees (reference meshers; ours have fixed bounds).
     #[arg(long)]
     min_angle: Option<f64>,
-    /// Requested maximum triangle area.
+    /// Requested maximum triangle area. hex, hex-simple and rhomb keep it by refining
+    /// further (their angle bounds unchanged); a .poly region's area limit is kept too.
     #[arg(long)]
     max_area: Option<f64>,
+    /// Requested maximum edge length: kept by hex, hex-simple, rhomb, lsb, cgal and gmsh;
+    /// refused (exit 2, naming the mesher) by the others, which have no such control.
+    #[arg(long, value_name = "L")]
+    max_edge: Option<f64>,
     /// Triangle's command-line switches (e.g. q25D), passed to the triangle mesher as given
     /// after its fixed pzAQa (README "Command line"); refused for other meshers, and j, r and the
     /// switches that change what Triangle outputs are refused. A q or a number after a here
@@ -327,6 +332,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     for (what, v) in [
         ("--min-angle", args.min_angle),
         ("--max-area", args.max_area),
+        ("--max-edge", args.max_edge),
         ("--max-rounding", args.max_rounding),
     ] {
         if let Some(v) = v {
@@ -347,6 +353,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     let params = Params {
         min_angle: args.min_angle,
         max_area: args.max_area,
+        max_edge: args.max_edge,
         max_rounding: args.max_rounding,
         budget: Budget {
             max_steps: args.max_steps,
@@ -477,6 +484,7 @@ fn verify_name(bounds: &Bounds) -> String {
         let as_generic = Bounds {
             name: generic.clone(),
             max_area: None,
+            max_edge: None,
             region_area_limits: false,
             ..bounds.clone()
         };

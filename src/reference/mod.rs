@@ -82,7 +82,8 @@ pub(crate) fn check_params(mesher: &str, params: &Params) -> Result<()> {
 }
 
 /// Refuses requests no reference mesher can honour: a minimum angle outside [0°, 60°) (no
-/// triangle has all angles above 60°) or a maximum area that is not a positive finite number.
+/// triangle has all angles above 60°) or a maximum area or edge length that is not a positive
+/// finite number.
 pub(crate) fn check_request(mesher: &str, params: &Params) -> Result<()> {
     if let Some(a) = params.min_angle {
         if !(a.is_finite() && (0.0..60.0).contains(&a)) {
@@ -97,6 +98,14 @@ pub(crate) fn check_request(mesher: &str, params: &Params) -> Result<()> {
             return Err(Error::mesher(
                 mesher,
                 format!("maximum area {a} is not a positive finite number"),
+            ));
+        }
+    }
+    if let Some(l) = params.max_edge {
+        if !(l.is_finite() && l > 0.0) {
+            return Err(Error::mesher(
+                mesher,
+                format!("maximum edge length {l} is not a positive finite number"),
             ));
         }
     }

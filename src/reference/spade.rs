@@ -147,6 +147,11 @@ impl Mesher for SpadeMesher {
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         check_params(NAME, params)?;
+        params.refuse_max_edge(
+            NAME,
+            "spade's refinement bounds areas and angles, not edge lengths; ask for --max-area \
+             instead",
+        )?;
         // The regions' area limits are kept with the smallest of them everywhere.
         let params = &Params {
             max_area: input.smallest_area_limit(params.max_area),

@@ -30,6 +30,8 @@ pub struct Params {
     pub min_angle: Option<f64>,
     /// Requested maximum triangle area.
     pub max_area: Option<f64>,
+    /// Requested maximum edge length.
+    pub max_edge: Option<f64>,
     /// The largest rounding allowance (degrees) a mesh of ours may use before the input is
     /// refused (`quality::rounding`); `None`: `DEFAULT_MAX_ROUNDING_DEG`.
     pub max_rounding: Option<f64>,
@@ -51,6 +53,38 @@ impl Params {
     pub fn with_max_area(mut self, area: f64) -> Params {
         self.max_area = Some(area);
         self
+    }
+
+    /// These parameters asking for edges of at most `length`.
+    pub fn with_max_edge(mut self, length: f64) -> Params {
+        self.max_edge = Some(length);
+        self
+    }
+
+    /// The size limits as given, checked: each must be a positive finite number (a usage
+    /// error naming it otherwise).
+    pub fn size_limits(&self) -> Result<(Option<f64>, Option<f64>)> {
+        for (name, v) in [("max-area", self.max_area), ("max-edge", self.max_edge)] {
+            if let Some(v) = v {
+                if !(v > 0.0 && v.is_finite()) {
+                    return Err(Error::Usage(format!(
+                        "--{name} must be a positive finite number, not {v}"
+                    )));
+                }
+            }
+        }
+        Ok((self.max_area, self.max_edge))
+    }
+
+    /// Refuses, as a usage error naming `mesher`, a maximum edge length for a mesher that
+    /// cannot keep one: it must be kept or refused, never ignored.
+    pub fn refuse_max_edge(&self, mesher: &str, why: &str) -> Result<()> {
+        match self.max_edge {
+            Some(l) => Err(Error::Usage(format!(
+                "mesher {mesher} cannot keep --max-edge {l}: {why}"
+            ))),
+            None => Ok(()),
+        }
     }
 
     /// These parameters allowing meshes to use at most `degrees` of rounding allowance.
@@ -169,8 +203,8 @@ pub fn refuse_area_limits(mesher: &str, input: &Pslg) -> Result<()> {
                 mesher,
                 format!(
                     "region {} at ({:?}, {:?}) limits triangle areas to {:?}, and {mesher} has no \
-                     size control: mesh the input with triangle, cgal, spade, gmsh or lsb, or \
-                     drop the area limits",
+                     size control: mesh the input with triangle, cgal, spade, gmsh, lsb, hex, \
+                     hex-simple or rhomb, or drop the area limits",
                     k + 1,
                     r.point[0],
                     r.point[1],

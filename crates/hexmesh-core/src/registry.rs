@@ -94,7 +94,8 @@ mod tests {
     fn a_mesher_name_gives_its_promise_and_generic_names_their_bounds() {
         use crate::quality::HEX;
         let hex = bounds("hex").expect("hex");
-        assert_eq!(hex, HEX.bounds());
+        // With no limit asked for: the criteria, and the regions' area limits (`hex::size`).
+        assert_eq!(hex, HEX.bounds().with_size_limits(None, None));
         let simple = bounds("hex-simple").expect("hex-simple");
         assert_eq!(
             (simple.min_angle, simple.max_angle),

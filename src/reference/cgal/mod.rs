@@ -173,7 +173,9 @@ fn finish(
 pub struct Cgal;
 
 impl Cgal {
-    /// CGAL's (b, S) for `params`: b = sin²θ (default 0.125), S = sqrt(4A/√3) (0: none).
+    /// CGAL's (b, S) for `params`: b = sin²θ (default 0.125), S = sqrt(4A/√3) for a maximum
+    /// area A, or the maximum edge length L, the smaller of the two (0: none). S bounds every
+    /// triangle's longest edge.
     pub fn criteria(&self, params: &Params) -> Result<(f64, f64)> {
         let b = match params.min_angle {
             None => DEFAULT_SHAPE_BOUND,
@@ -185,9 +187,9 @@ impl Cgal {
                 ))
             }
         };
-        let s = match params.max_area {
-            None => 0.0,
-            Some(a) if a.is_finite() && a > 0.0 => size_bound(a),
+        let area = match params.max_area {
+            None => None,
+            Some(a) if a.is_finite() && a > 0.0 => Some(size_bound(a)),
             Some(a) => {
                 return Err(Error::mesher(
                     self.name(),
@@ -195,6 +197,17 @@ impl Cgal {
                 ))
             }
         };
+        let edge = match params.max_edge {
+            None => None,
+            Some(l) if l.is_finite() && l > 0.0 => Some(l),
+            Some(l) => {
+                return Err(Error::mesher(
+                    self.name(),
+                    format!("maximum edge length {l} is not a positive finite number"),
+                ))
+            }
+        };
+        let s = area.into_iter().chain(edge).reduce(f64::min).unwrap_or(0.0);
         Ok((b, s))
     }
 }
@@ -217,11 +230,15 @@ impl Mesher for Cgal {
             Some(deg) => format!("b = sin²({deg}°) = {b}"),
             None => format!("b = {b} (CGAL default, θ = 20.7°)"),
         };
-        let size = match params.max_area {
-            Some(a) => format!(
+        let size = match (params.max_area, params.max_edge) {
+            (Some(a), None) => format!(
                 "S = {s} (edge length of the equilateral triangle of area A = {a}: sqrt(4A/√3))"
             ),
-            None => "S = 0 (no size bound)".to_string(),
+            (Some(a), Some(l)) => {
+                format!("S = {s} (the smaller of the maximum edge {l} and sqrt(4A/√3) for A = {a})")
+            }
+            (None, Some(l)) => format!("S = {s} (the maximum edge {l})"),
+            (None, None) => "S = 0 (no size bound)".to_string(),
         };
         format!(
             "Delaunay_mesh_size_criteria_2({angle}; {size}); point sets meshed in their \
@@ -236,7 +253,7 @@ impl Mesher for Cgal {
     fn promise(&self, params: &Params) -> Bounds {
         // The size bound S keeps every edge at most S long, so every area at most √3/4·S².
         super::asked_angle(self.name(), params, default_min_angle())
-            .with_area_limits(params.max_area)
+            .with_size_limits(params.max_area, params.max_edge)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
@@ -293,6 +310,10 @@ impl Mesher for CgalConforming {
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         hexmesh_core::mesher::refuse_area_limits(self.name(), input)?;
         params.refuse_switches(self.name())?;
+        params.refuse_max_edge(
+            self.name(),
+            "make_conforming_Delaunay_2 has no size criterion (cgal's Delaunay_mesh_size_criteria_2 has)",
+        )?;
         let domain = domain(input);
         crate::reference::check_scale(self.name(), &domain)?;
         let start = Instant::now();

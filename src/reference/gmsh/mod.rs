@@ -119,6 +119,9 @@ impl Mesher for GmshMesher {
                 edge_for_area(a)
             ));
         }
+        if let Some(l) = params.max_edge {
+            s.push_str(&format!(", at most the maximum edge {l}"));
+        }
         s.push_str(", AutoCoherence=0, 1 thread, binary msh 4.1");
         if let Some(a) = params.min_angle {
             s.push_str(&format!(
@@ -148,9 +151,15 @@ impl Mesher for GmshMesher {
         gmsh_version()
             .as_ref()
             .map_err(|e| Error::mesher(NAME, e.clone()))?;
-        // The regions' area limits, as a size target: the smallest of them everywhere.
+        // The regions' area limits, as a size target: the smallest of them everywhere; a
+        // maximum edge length is a size target as well, the smaller one wins.
         let area = input.smallest_area_limit(params.max_area);
-        let script = geo::script(input, area.map(edge_for_area), OPTIONS)?;
+        let size = area
+            .map(edge_for_area)
+            .into_iter()
+            .chain(params.max_edge)
+            .reduce(f64::min);
+        let script = geo::script(input, size, OPTIONS)?;
         let dir = Scratch::new()?;
         let geo_path = dir.path.join("domain.geo");
         let msh_path = dir.path.join("domain.msh");

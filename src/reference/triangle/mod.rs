@@ -81,6 +81,10 @@ pub fn user_switches(params: &Params) -> Result<Option<Switches>> {
 /// Errors for requests no reference honours and for refused or clashing user switches.
 pub fn triangle_switches(params: &Params) -> Result<String> {
     check_request(NAME, params)?;
+    params.refuse_max_edge(
+        NAME,
+        "Triangle bounds areas (a) and angles (q), not edge lengths; ask for --max-area instead",
+    )?;
     let user = user_switches(params)?;
     let mut s = String::from("pzAQa");
     if let Some(area) = params.max_area {

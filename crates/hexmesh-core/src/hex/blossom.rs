@@ -41,8 +41,13 @@ fn disc(c: Key, radius: i64) -> impl Iterator<Item = Key> {
 }
 
 /// True when the subdivided hexagon `top` and its six neighbours can be made a blossom.
+/// A blossom makes `top` and its neighbours leaves of `top`'s level, so none is formed
+/// coarser than the size level (`hex::size`).
 pub fn can_form(h: &Hierarchy, r: &Rings, top: Key) -> bool {
-    if !h.is_subdivided(top) || (0..6).any(|d| !h.is_subdivided(top.neighbor(d))) {
+    if top.k < h.size_level()
+        || !h.is_subdivided(top)
+        || (0..6).any(|d| !h.is_subdivided(top.neighbor(d)))
+    {
         return false;
     }
     disc(top.central_child(), 4).all(|x| {

@@ -10,6 +10,7 @@
 //! - `parallel`: long lists split over the machine's threads (ours, not the paper's).
 //! - `subdivision`: split, join, balancing, point location (Sec. 3).
 //! - `refine`: refinement rules 1–5 on a work list (Sec. 4.1).
+//! - `size`: the maximum area and edge length, kept by subdividing further (ours).
 //! - `blossom`: local coarsening into blossoms (Sec. 5.3).
 //! - `dual`: the dual triangle mesh (Sec. 4.2).
 //! - `pslg`: planar straight-line graphs: segments, holes, the domain (Sec. 7).
@@ -31,6 +32,7 @@ pub mod picture;
 pub mod pslg;
 pub mod refine;
 pub mod region;
+pub mod size;
 pub mod subdivision;
 
 use std::time::Instant;
@@ -64,9 +66,7 @@ impl Mesher for HexSimple {
 
     fn settings(&self, params: &Params) -> String {
         let mut s = String::from("simple refinement (Sec. 4), angles 30-120 deg");
-        if params.min_angle.is_some() || params.max_area.is_some() {
-            s.push_str("; min-angle and max-area ignored (fixed bounds)");
-        }
+        size_settings(&mut s, params);
         s
     }
 
@@ -74,12 +74,12 @@ impl Mesher for HexSimple {
         false
     }
 
-    fn promise(&self, _: &Params) -> Bounds {
+    fn promise(&self, params: &Params) -> Bounds {
         Bounds::angles(self.name(), SIMPLE_ANGLES.0, SIMPLE_ANGLES.1)
+            .with_size_limits(params.max_area, params.max_edge)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
-        crate::mesher::refuse_area_limits(self.name(), input)?;
         params.refuse_switches(self.name())?;
         let start = Instant::now();
         let mut h = new_hierarchy(input, params, "hex-simple")?;
@@ -98,6 +98,7 @@ impl Mesher for HexSimple {
         }
         if stop.is_none() {
             check_rounded_angles(&mesh, &input.points, params.max_rounding_deg())?;
+            size::check(&mesh, size::limits(input, params)?, self.name(), |_| true)?;
         }
         Ok(MeshRun {
             mesh,
@@ -106,6 +107,21 @@ impl Mesher for HexSimple {
             steps: h.steps,
             elapsed: start.elapsed(),
         })
+    }
+}
+
+/// Appends to a hex mesher's settings the size limits it keeps (`size`; a region's area limit
+/// is kept too, the smallest one everywhere), and that the minimum angle asked for is not
+/// used (the bounds are fixed).
+pub(crate) fn size_settings(s: &mut String, params: &Params) {
+    if let Some(a) = params.max_area {
+        s.push_str(&format!("; max_area {a}"));
+    }
+    if let Some(l) = params.max_edge {
+        s.push_str(&format!("; max_edge {l}"));
+    }
+    if params.min_angle.is_some() {
+        s.push_str("; min_angle not used (fixed bounds)");
     }
 }
 
@@ -149,8 +165,16 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
             fitted: input.hexagon.is_none(),
         }));
     }
-    let mut h = Hierarchy::new(Lattice::new(root), input.points.clone(), params.budget);
+    let lattice = Lattice::new(root);
+    let level = size::level(
+        lattice.r0,
+        size::limits(input, params)?,
+        size::Factors::of(mesher),
+        mesher,
+    )?;
+    let mut h = Hierarchy::new(lattice, input.points.clone(), params.budget);
     h.set_max_rounding(params.max_rounding_deg());
+    h.set_size_level(level);
     Ok(h)
 }
 
@@ -166,9 +190,10 @@ pub fn mesh_with_hierarchy(
     Ok((h, stop))
 }
 
-/// Runs the simple refinement: `None` when it finished, the reason when a budget stopped it.
+/// Runs the simple refinement, then the subdivisions of the size limits (`size::refine`):
+/// `None` when it finished, the reason when a budget stopped it.
 fn run_simple(h: &mut Hierarchy) -> Result<Option<StopReason>> {
-    match refine::refine_simple(h) {
+    match refine::refine_simple(h).and_then(|()| size::refine(h)) {
         Ok(()) => Ok(None),
         Err(Stop::Budget(why)) => Ok(Some(why)),
         Err(Stop::Precision(problem)) => Err(Error::input(problem)),

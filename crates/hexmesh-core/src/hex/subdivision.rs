@@ -86,6 +86,8 @@ pub struct Hierarchy {
     max_rounding: f64,
     /// The deepest level a hexagon has reached.
     deepest: u8,
+    /// The level every full leaf reaches to keep the size limits (`hex::size`); 0 for none.
+    size_level: u8,
     /// Hexagons that started or stopped being occupied, while `track_occupancy` is on (the
     /// extended rules bring their rings up to date from it).
     occupancy_changes: Option<Vec<Key>>,
@@ -108,6 +110,7 @@ impl Hierarchy {
         Hierarchy {
             max_rounding: crate::quality::rounding::DEFAULT_MAX_ROUNDING_DEG,
             deepest: 0,
+            size_level: 0,
             occupancy_changes: None,
             lattice,
             points,
@@ -408,6 +411,17 @@ impl Hierarchy {
             needed,
             allowed: self.max_rounding,
         }
+    }
+
+    /// Sets the level every full leaf must reach to keep the size limits (`hex::size`, which
+    /// subdivides to it; blossoms are not formed coarser).
+    pub fn set_size_level(&mut self, level: u8) {
+        self.size_level = level;
+    }
+
+    /// The level every full leaf must reach to keep the size limits; 0 for none.
+    pub fn size_level(&self) -> u8 {
+        self.size_level
     }
 
     /// The deepest level a hexagon has reached.

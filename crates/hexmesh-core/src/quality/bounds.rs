@@ -107,6 +107,8 @@ pub struct Bounds {
     pub whole_sharp_corners: bool,
     /// Largest allowed triangle area everywhere (the maximum area the mesher was asked for).
     pub max_area: Option<f64>,
+    /// Longest allowed edge everywhere (the maximum edge length the mesher was asked for).
+    pub max_edge: Option<f64>,
     /// Every triangle's area is at most the area limit of the input region it lies in
     /// ([`crate::Region::area_limit`], regions located by [`crate::quality::triangle_regions`]).
     pub region_area_limits: bool,
@@ -128,6 +130,7 @@ impl Bounds {
             interior_only_on_segments: false,
             whole_sharp_corners: false,
             max_area: None,
+            max_edge: None,
             region_area_limits: false,
         }
     }
@@ -139,6 +142,15 @@ impl Bounds {
             max_area,
             region_area_limits: true,
             ..self
+        }
+    }
+
+    /// These bounds and the size limits of a mesher that keeps every one it is given:
+    /// `max_area` and each input region's own limit (`with_area_limits`) and `max_edge`.
+    pub fn with_size_limits(self, max_area: Option<f64>, max_edge: Option<f64>) -> Bounds {
+        Bounds {
+            max_edge,
+            ..self.with_area_limits(max_area)
         }
     }
 

@@ -247,8 +247,22 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 fit,
             );
         }
+        // A size limit of the input's regions sets the edge scale where it is finer than the
+        // points: the shortest edge relative to d_min (hex's Sec. 6.3) is then not promised
+        // (`Mesher::promise` drops it for `--max-area`/`--max-edge`, which it sees).
+        let sized = b.region_area_limits && input.is_some_and(Pslg::has_area_limits);
         if let Some(limit) = b.min_edge_over_dmin {
             match (m.shortest_edge, m.d_min) {
+                _ if sized => checks.push(Check {
+                    what: "shortest edge / d_min".to_string(),
+                    value: None,
+                    relation: "≥".to_string(),
+                    limit,
+                    status: Status::Skipped,
+                    worst: None,
+                    rounding: None,
+                    note: Some("the input's regional area limits set the edge lengths".to_string()),
+                }),
                 (Some(s), Some(d)) if d > 0.0 => {
                     let fit = fit_of(covered().flat_map(|(t, c)| {
                         (0..3).map(move |e| {
@@ -296,6 +310,9 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         let regional = b.region_area_limits && input.is_some_and(Pslg::has_area_limits);
         if b.max_area.is_some() || regional {
             checks.push(area_check(mesh, input.filter(|_| regional), b.max_area));
+        }
+        if let Some(limit) = b.max_edge {
+            checks.push(edge_check(mesh, limit));
         }
         if b.delaunay {
             let count = m.delaunay_violations;
@@ -427,6 +444,39 @@ fn area_check(mesh: &TriMesh, input: Option<&Pslg>, max_area: Option<f64>) -> Ch
                 (None, _) => "the input's regional limits".to_string(),
             } + "; up to 1 + 2^-40",
         ),
+    }
+}
+
+/// Every edge's length against `limit` (`--max-edge`). The figure is the longest edge over
+/// its limit; it passes up to 1 + 2^-40, the area check's slack (`AREA_SLACK`).
+fn edge_check(mesh: &TriMesh, limit: f64) -> Check {
+    let mut worst: Option<(f64, usize)> = None;
+    for (t, tri) in mesh.triangles.iter().enumerate() {
+        if tri.iter().any(|&v| v as usize >= mesh.vertices.len()) {
+            continue;
+        }
+        let c = mesh.corners(t);
+        for e in 0..3 {
+            let ratio = crate::geom::dist(c[e], c[(e + 1) % 3]) / limit;
+            if worst.is_none_or(|(w, _)| ratio > w) {
+                worst = Some((ratio, t));
+            }
+        }
+    }
+    let failed = worst.is_some_and(|(w, _)| w > 1.0 + AREA_SLACK);
+    Check {
+        what: "longest edge / its limit".to_string(),
+        value: worst.map(|(w, _)| w),
+        relation: "≤".to_string(),
+        limit: 1.0,
+        status: if failed { Status::Fail } else { Status::Ok },
+        worst: worst.filter(|_| failed).map(|(w, t)| WorstTriangle {
+            triangle: t,
+            corners: mesh.corners(t),
+            value: w,
+        }),
+        rounding: None,
+        note: Some(format!("--max-edge {limit}; up to 1 + 2^-40")),
     }
 }
 

@@ -46,6 +46,13 @@ pub enum Target {
     MaxEdge(f64),
     /// Every triangle's area at most this.
     MaxArea(f64),
+    /// Every triangle's area at most `area` and every edge at most `edge` long.
+    AreaAndEdge {
+        /// The largest area.
+        area: f64,
+        /// The longest edge.
+        edge: f64,
+    },
 }
 
 /// A refined mesh with its ancestry and the figures a report compares.
@@ -487,6 +494,10 @@ impl Engine {
                 len2(&e.v, a, b) > l * l
             }
             Target::MaxArea(area) => e.area(id) > area,
+            Target::AreaAndEdge { area, edge } => {
+                let (a, b) = e.longest(id);
+                len2(&e.v, a, b) > edge * edge || e.area(id) > area
+            }
         };
         // Keys: squared length (non-negative f64 bits order as the numbers do), then the
         // smaller vertex pair first among equals, for a fixed order.
@@ -671,18 +682,24 @@ impl Lsb {
     }
 
     /// The target `params` asks for: `max_area` and the input regions' area limits (the
-    /// smallest of them, everywhere: `Pslg::smallest_area_limit`), or else every edge below
-    /// 1/20 of the diagonal of the domain's bounding box.
+    /// smallest of them, everywhere: `Pslg::smallest_area_limit`) and `max_edge`, or, when
+    /// neither is given, every edge below 1/20 of the diagonal of the domain's bounding box.
     pub fn target(input: &Pslg, params: &Params) -> Result<Target> {
         input.validate_input()?;
-        Ok(match input.smallest_area_limit(params.max_area) {
-            Some(a) if a.is_finite() && a > 0.0 => Target::MaxArea(a),
-            Some(a) => {
+        let (_, max_edge) = params.size_limits()?;
+        let area = match input.smallest_area_limit(params.max_area) {
+            Some(a) if !(a.is_finite() && a > 0.0) => {
                 return Err(Error::Usage(format!(
                     "max-area must be a positive finite number, not {a}"
                 )))
             }
-            None => {
+            area => area,
+        };
+        Ok(match (area, max_edge) {
+            (Some(area), Some(edge)) => Target::AreaAndEdge { area, edge },
+            (Some(a), None) => Target::MaxArea(a),
+            (None, Some(l)) => Target::MaxEdge(l),
+            (None, None) => {
                 let d = domain(input);
                 let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
                 for p in &d.points {
@@ -740,9 +757,13 @@ impl Mesher for Lsb {
         } else {
             "modified longest-side bisection (Def. 3.2, rule 4.1)"
         };
-        let target = match params.max_area {
-            Some(a) => format!("until every triangle's area <= {a}"),
-            None => "until every edge <= bounding-box diagonal / 20 (no max-area given)".into(),
+        let target = match (params.max_area, params.max_edge) {
+            (Some(a), Some(l)) => format!("until every triangle's area <= {a} and edge <= {l}"),
+            (Some(a), None) => format!("until every triangle's area <= {a}"),
+            (None, Some(l)) => format!("until every edge <= {l}"),
+            (None, None) => {
+                "until every edge <= bounding-box diagonal / 20 (no max-area given)".into()
+            }
         };
         let ignored = if params.min_angle.is_some() {
             "; min-angle ignored (the bound is 2/3 of the initial triangulation's)"
@@ -762,7 +783,8 @@ impl Mesher for Lsb {
         // Paper 003: plain bisection and the adaptive refinement with rule 4.1 keep half the
         // smallest angle of the initial triangle (Sec. 4); 2/3 needs every quaternary split
         // completed, which only uniform refinement does (Theorem 3.4).
-        Bounds::descent(self.name(), LSB_ADAPTIVE_RATIO).with_area_limits(params.max_area)
+        Bounds::descent(self.name(), LSB_ADAPTIVE_RATIO)
+            .with_size_limits(params.max_area, params.max_edge)
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {

@@ -538,6 +538,10 @@ impl Mesher for Saalfeld {
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         crate::mesher::refuse_area_limits(self.name(), input)?;
         params.refuse_switches(self.name())?;
+        params.refuse_max_edge(
+            self.name(),
+            "a conforming Delaunay triangulation without size refinement",
+        )?;
         Ok(self.refine(input, params)?.run)
     }
 }

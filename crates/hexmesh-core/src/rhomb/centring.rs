@@ -82,6 +82,18 @@ impl Patch {
         }
     }
 
+    /// The longest edge a triangle of the patch can have, in units of l: the moved point at
+    /// most its offset from m. Moved: m's edges are l, the point within CENTRED·l of m.
+    /// Melted: edges from m of L = 2l, the point within l/√3 of m; the ring's triangles have
+    /// edges L, and those joining it to the level-k rhombs at most L.
+    pub fn edge_factor(&self) -> f64 {
+        match self.kind {
+            Kind::Moved => 1.0 + CENTRED,
+            Kind::Melted => 2.0 + 1.0 / 3f64.sqrt(),
+            Kind::Vertex => 0.0,
+        }
+    }
+
     /// Circumradius of the patch's own triangles in level-k steps.
     pub fn radius(&self) -> i64 {
         match self.kind {
@@ -211,11 +223,12 @@ pub fn star_angles(p: [f64; 2]) -> (f64, f64) {
 
 /// Refines the tree until every point has a patch whose zone is made of level-k leaves inside
 /// the hexagon and meets no other zone; returns the patches in point order.
-/// `max_area`, when given, is in units of the root side squared.
+/// `limits` are the maximum area, in units of the root side squared, and the maximum edge
+/// length, in units of the root side, when given.
 pub fn centre_points(
     tree: &mut Tree,
     points: u32,
-    max_area: Option<f64>,
+    (max_area, max_edge): (Option<f64>, Option<f64>),
     guard: &Guard,
 ) -> Result<Vec<Patch>, Stop> {
     loop {
@@ -266,7 +279,9 @@ pub fn centre_points(
                 kind,
             };
             let side = 1.0 / (1i64 << k) as f64;
-            if max_area.is_some_and(|a| patch.area_factor() * side * side > a) {
+            if max_area.is_some_and(|a| patch.area_factor() * side * side > a)
+                || max_edge.is_some_and(|l| patch.edge_factor() * side > l)
+            {
                 to_split.insert(leaf);
                 continue;
             }

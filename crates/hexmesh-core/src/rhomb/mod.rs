@@ -14,6 +14,10 @@
 //! (`Frame::boundary_vertex`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
 //! one output vertex each). A run stopped by a budget returns the balanced tree's triangulation
 //! without the input points (`complete == false`), which still meets the angle bounds.
+//! Size (ours): `Params::max_area` (with the regions' smallest area limit) and
+//! `Params::max_edge` are kept on point sets by splitting every rhomb coarser than the level
+//! whose triangles respect both (`size_level`) and every patch whose triangles could exceed
+//! either (`centring::Patch::area_factor`, `edge_factor`); with segments they are refused.
 
 mod centring;
 mod domain;
@@ -53,6 +57,9 @@ impl Mesher for Rhomb {
         if let Some(a) = params.max_area {
             s.push_str(&format!("; max_area {a}"));
         }
+        if let Some(l) = params.max_edge {
+            s.push_str(&format!("; max_edge {l}"));
+        }
         if params.min_angle.is_some() {
             s.push_str("; min_angle ignored");
         }
@@ -63,13 +70,13 @@ impl Mesher for Rhomb {
         false
     }
 
-    fn promise(&self, _: &Params) -> Bounds {
+    fn promise(&self, params: &Params) -> Bounds {
         // Every triangle, near segments too, but at input corners sharper than 30° taken
-        // whole (paper 001's promise).
+        // whole (paper 001's promise); the size limits on point sets (domains refuse them).
         Bounds {
             interior_only_on_segments: false,
             whole_sharp_corners: true,
-            ..Bounds::angles(NAME, 30.0, 90.0)
+            ..Bounds::angles(NAME, 30.0, 90.0).with_size_limits(params.max_area, params.max_edge)
         }
     }
 
@@ -78,6 +85,21 @@ impl Mesher for Rhomb {
         let start = Instant::now();
         input.validate_input()?;
         if input.has_segments() {
+            // The domain quad-tree has no size control yet: a limit is refused, not ignored.
+            if let Some(a) = input.smallest_area_limit(params.max_area) {
+                return Err(Error::mesher(
+                    NAME,
+                    format!(
+                        "an input with segments is meshed without size control, so the area \
+                         limit {a} cannot be kept: mesh the domain with triangle, cgal, spade, \
+                         gmsh, lsb or hex, or drop the limit"
+                    ),
+                ));
+            }
+            params.refuse_max_edge(
+                NAME,
+                "an input with segments is meshed without size control",
+            )?;
             return domain::mesh(input, params);
         }
         let hex = input.bounding_hexagon();
@@ -102,8 +124,8 @@ impl Mesher for Rhomb {
             .zip(&coords)
             .map(|(&p, &st)| frame.boundary_vertex(p, st))
             .collect();
-        // max_area in units of the root side 2R squared, and the coarsest level whose
-        // equilateral halves (√3/4·side²) respect it.
+        // max_area in units of the root side 2R squared, max_edge in units of 2R, and the
+        // coarsest level whose triangles respect both (`size_level`).
         let root_side = 2.0 * hex.circumradius;
         // The regions' area limits are kept with the smallest of them everywhere.
         let max_area = match input.smallest_area_limit(params.max_area) {
@@ -116,19 +138,14 @@ impl Mesher for Rhomb {
                 ))
             }
         };
-        let area_level = max_area.map_or(0, |a| {
-            let mut level = 0u8;
-            while level < lattice::MAX_LEVEL && 3f64.sqrt() / 4.0 * 0.25f64.powi(level as i32) > a {
-                level += 1;
-            }
-            level
-        });
+        let max_edge = params.size_limits()?.1.map(|l| l / root_side);
+        let area_level = size_level(max_area, max_edge);
         let mut tree = Tree::new(coords, area_level).with_pins(pins);
         let guard = Guard::new(params.budget);
         let n = input.points.len() as u32;
         let outcome = tree
             .split_crowded(&guard)
-            .and_then(|()| centring::centre_points(&mut tree, n, max_area, &guard));
+            .and_then(|()| centring::centre_points(&mut tree, n, (max_area, max_edge), &guard));
         let (patches, stop_reason) = match outcome {
             Ok(patches) => (patches, None),
             Err(Stop::Budget(reason)) => (Vec::new(), Some(reason)),
@@ -148,6 +165,24 @@ impl Mesher for Rhomb {
             elapsed: start.elapsed(),
         })
     }
+}
+
+/// The coarsest level whose triangles respect the size limits, both in units of the root side
+/// (2R): a leaf of level k has side l = 2^-k, its equilateral halves area √3/4·l², and the
+/// edges of its triangles (halves, the 30-60-90 triangles of a splitting point, the
+/// quarters) are at most l long. Patches carry their own factors (`centring::Patch`).
+fn size_level(max_area: Option<f64>, max_edge: Option<f64>) -> u8 {
+    let mut level = 0u8;
+    while level < lattice::MAX_LEVEL {
+        let side = 0.5f64.powi(i32::from(level));
+        let area_ok = max_area.is_none_or(|a| 3f64.sqrt() / 4.0 * side * side <= a);
+        let edge_ok = max_edge.is_none_or(|l| side <= l);
+        if area_ok && edge_ok {
+            break;
+        }
+        level += 1;
+    }
+    level
 }
 
 /// Why the rhombs reached the lattice's deepest level (`Stop::Depth`): the closest pair of

@@ -108,6 +108,7 @@ use crate::error::{Error, Result};
 use crate::hex::dual::{self, Placement};
 use crate::hex::lattice::KeySet;
 use crate::hex::refine::refine_simple;
+use crate::hex::size;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
@@ -173,9 +174,7 @@ impl Mesher for Hex {
 
     fn settings(&self, params: &Params) -> String {
         let mut s = String::from("extended refinement (Sec. 5), angles 43.8979-90 deg");
-        if params.min_angle.is_some() || params.max_area.is_some() {
-            s.push_str("; min-angle and max-area ignored (fixed bounds)");
-        }
+        crate::hex::size_settings(&mut s, params);
         s
     }
 
@@ -183,17 +182,41 @@ impl Mesher for Hex {
         true
     }
 
-    fn promise(&self, _: &Params) -> Bounds {
-        HEX.bounds()
+    fn promise(&self, params: &Params) -> Bounds {
+        let bounds = HEX
+            .bounds()
+            .with_size_limits(params.max_area, params.max_edge);
+        if params.max_area.is_some() || params.max_edge.is_some() {
+            // The shortest edge of Sec. 6.3 is relative to the closest input points; a size
+            // limit finer than they are makes every edge as short as it requires (`size`).
+            return Bounds {
+                min_edge_over_dmin: None,
+                ..bounds
+            };
+        }
+        bounds
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
-        crate::mesher::refuse_area_limits(self.name(), input)?;
         params.refuse_switches(self.name())?;
         let start = Instant::now();
+        let limits = size::limits(input, params)?;
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
         if input.has_segments() {
-            let out = crate::hex::pslg::mesh_pslg(input, params)?;
+            // The hierarchy is built on the points alone, so the regions' smallest area limit
+            // travels as the maximum area.
+            let sized = Params {
+                max_area: limits.0,
+                ..params.clone()
+            };
+            let out = crate::hex::pslg::mesh_pslg(input, &sized)?;
+            // Away from the segments the triangles keep the limits (`size`); next to them,
+            // the re-triangulated neighbourhoods of Sec. 7 are not refined for them.
+            size::check(&out.mesh, limits, self.name(), |t| {
+                out.mesh.triangles[t]
+                    .iter()
+                    .all(|&v| !out.on_segment[v as usize])
+            })?;
             // The interior keeps the Sec. 6 angles under the rounding contract: refused,
             // naming the points, where rounding would move one more than `max_rounding`.
             crate::quality::rounding::check_interior_angles(
@@ -225,6 +248,7 @@ impl Mesher for Hex {
                 out.stats.rounding_pairs,
                 params.max_rounding_deg(),
             )?;
+            size::check(&out.mesh, limits, self.name(), |_| true)?;
         }
         Ok(MeshRun {
             mesh: out.mesh,
@@ -294,6 +318,7 @@ fn refine_and_verify(
     state: &mut RingState,
 ) -> Result<TriMesh, Stop> {
     refine_simple(h)?;
+    size::refine(h)?;
     // The extended rules act on full leaves only, and `extended_actions` sorts what it finds,
     // so the full leaves as a block set do (not every leaf with its cell, sorted: at plane-1m
     // about 5 GB built and sorted once).

@@ -52,6 +52,7 @@ pub(super) fn drive(
     stats: &mut PslgStats,
 ) -> std::result::Result<(TriMesh, Vec<bool>), Fail> {
     refine_simple(h)?;
+    crate::hex::size::refine(h)?;
     let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
     let mut first_size = None;
     loop {

@@ -184,6 +184,7 @@ pub fn refine_pslg(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<S
     let segments = segment_points(input);
     let mut stats = PslgStats::default();
     let outcome = refine_simple(&mut h).and_then(|()| {
+        crate::hex::size::refine(&mut h)?;
         let candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
         apply_rules(&mut h, input, &segments, candidates, &mut stats).map(|_| ())
     });

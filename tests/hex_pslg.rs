@@ -410,3 +410,44 @@ fn nearly_parallel_segments_and_a_point_beside_a_segment_mesh() {
     p.segments.extend([[b, b + 1], [b + 2, b + 3]]);
     mesh_and_check("close-features", &p);
 }
+
+/// spade's issue 96 constraint edges in their bounding box
+/// (tests/fixtures/hex/spade-issue96-box-rule-wave-hang.poly): two segments 0.002 apart over
+/// 7 units ask for hexagons at level 20 between them, and the rule against fins carries that
+/// level along the chain of segments they belong to, a round of the rule loop per hexagon
+/// (about 40,000 rounds). Each round recomputed the whole assignment, and the mesher ran at
+/// full CPU until any timeout; now a round costs what the one before changed. The run is held
+/// to a budget of subdivisions and vertices, not to a time.
+#[test]
+fn spade_issue96_box_meshes_valid_and_conforming_within_a_step_budget() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fixtures/hex/spade-issue96-box-rule-wave-hang.poly");
+    let input = hexmesh::io::read_input(&path).expect("the fixture reads");
+    let mut params = Params::default();
+    params.budget.max_steps = Some(300_000);
+    params.budget.max_vertices = Some(1_000_000);
+    let run = mesh_pslg(&input, &params).unwrap_or_else(|e| panic!("{e}"));
+    let violations = validate(
+        &run.mesh,
+        Some(&input),
+        &ValidateOptions {
+            single_component: false,
+            conforming: true,
+        },
+    );
+    assert!(
+        violations.is_empty(),
+        "first of {}: {}",
+        violations.len(),
+        violations[0]
+    );
+    assert_eq!(&run.mesh.vertices[..input.points.len()], &input.points[..]);
+    let v = verdict(&run.mesh, Some(&input), Some(&Bounds::validity("hex")));
+    assert!(v.passed(), "{v}");
+    println!(
+        "spade-issue96-box: {} vertices, {} triangles, {:?}",
+        run.mesh.vertices.len(),
+        run.mesh.triangles.len(),
+        run.stats
+    );
+}

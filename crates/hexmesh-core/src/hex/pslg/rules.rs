@@ -249,4 +249,34 @@ mod tests {
         let leaves: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
         assert!(extended_actions(&h, &rings(&h), &leaves).is_empty());
     }
+
+    /// tests/fixtures/hex/rules-one-segment-batch-order.poly: a batch that both joined a
+    /// semi-hexagon and subdivided the cell it made full gave a segment endpoint's hexagon a
+    /// fin every round, one level deeper each round without end (`apply` decides each key on
+    /// the state the batch was computed on).
+    #[test]
+    fn one_segment_reaches_the_fixed_point_of_the_rules() {
+        let name = "rules-one-segment-batch-order.poly";
+        let text =
+            include_str!("../../../../../tests/fixtures/hex/rules-one-segment-batch-order.poly");
+        let poly = crate::io::parse_poly(std::path::Path::new(name), text).expect(name);
+        let base = poly.nodes.first_index;
+        let input = Pslg {
+            points: poly.nodes.points.clone(),
+            segments: poly.segments.iter().map(|s| s.map(|v| v - base)).collect(),
+            ..Pslg::default()
+        };
+        let segments = super::super::segment_points(&input);
+        let params = crate::mesher::Params::default().with_budget(crate::mesher::Budget {
+            max_steps: Some(5_000),
+            ..crate::mesher::Budget::default()
+        });
+        let mut h = crate::hex::new_hierarchy(&super::super::point_set(&input), &params, "hex")
+            .expect("a hierarchy");
+        crate::hex::refine::refine_simple(&mut h).expect("the simple refinement");
+        let all: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
+        let mut stats = PslgStats::default();
+        let crossed = apply_rules(&mut h, &input, &segments, all, &mut stats);
+        assert!(crossed.is_ok_and(|c| !c.is_empty()), "{:?}", stats);
+    }
 }

@@ -185,12 +185,6 @@ struct MeshArgs {
     /// before exiting; by default a mesh that fails them is written but exits 1.
     #[arg(long)]
     no_check: bool,
-    #[command(flatten)]
-    hull: HullArg,
-}
-
-#[derive(Args)]
-struct HullArg {
     /// Mesh a .poly input inside its convex hull (Triangle's -c): the hull's edges are added
     /// as segments after the file's (split at every point on the hull), for every mesher
     /// alike, and the mesh is checked against that input. Without it, segments that enclose
@@ -224,10 +218,10 @@ struct VerifyArgs {
     /// Print the verdict as JSON.
     #[arg(long)]
     json: bool,
-    /// With --input: check against the input inside its convex hull, as `mesh --convex-hull`
-    /// meshed it.
-    #[command(flatten)]
-    hull: HullArg,
+    /// With --input: check against the input inside its convex hull (the hull's edges added
+    /// as segments after the file's), as `mesh --convex-hull` meshed it.
+    #[arg(long)]
+    convex_hull: bool,
 }
 
 /// Runs the command line; `main` returns this.
@@ -340,7 +334,7 @@ fn datasets(out: &Path, scaling: bool) -> Result<ExitCode> {
 }
 
 fn mesh(args: &MeshArgs) -> Result<ExitCode> {
-    let (input, input_base) = load_input_numbered(&args.input, args.hull.convex_hull)?;
+    let (input, input_base) = load_input_numbered(&args.input, args.convex_hull)?;
     input.validate_input()?;
     let mesher = crate::registry::mesher(&args.mesher)?;
     let formats = args
@@ -440,7 +434,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
             mesher.name(),
             args.prefix.display(),
             args.input,
-            if args.hull.convex_hull {
+            if args.convex_hull {
                 " --convex-hull"
             } else {
                 ""
@@ -521,7 +515,7 @@ fn verify_name(bounds: &Bounds) -> String {
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     let loaded = crate::io::read_any_mesh(&args.prefix)?;
     let mesh = &loaded.mesh;
-    if args.hull.convex_hull && args.input.is_none() {
+    if args.convex_hull && args.input.is_none() {
         return Err(Error::Usage(
             "--convex-hull encloses the input given with --input; there is none".into(),
         ));
@@ -529,7 +523,7 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     let input = args
         .input
         .as_deref()
-        .map(|i| load_input_numbered(i, args.hull.convex_hull))
+        .map(|i| load_input_numbered(i, args.convex_hull))
         .transpose()?;
     let numbering = Numbering {
         mesh: loaded.first_index,

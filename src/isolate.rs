@@ -29,7 +29,7 @@ use std::process::{Child, Command, ExitCode, ExitStatus, Stdio};
 use std::thread;
 use std::time::{Duration, Instant};
 
-use crate::error::{Error, InputError, Result};
+use crate::error::{Error, InputError, Result, Unenclosed};
 use crate::geom::{Hexagon, Turn};
 use crate::mesh::{Labels, Pslg, Region, TriMesh};
 use crate::mesher::{Budget, MeshRun, Params, StopReason};
@@ -698,8 +698,9 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     Ok((name, input, params))
 }
 
-/// A mesher's refusal of a PSLG that is not a polygonal domain (`rhomb`, paper 001 Sec. 3)
-/// as a kind byte and up to three indices, so that the parent can name the file's lines.
+/// A refusal of a PSLG whose segments do not enclose a domain (`Pslg::check_enclosed`), or
+/// that is not a polygonal domain (`rhomb`, paper 001 Sec. 3), as a kind byte and up to three
+/// indices, so that the parent can name the file's lines.
 fn domain_refusal(problem: &InputError) -> Option<(u8, [usize; 3])> {
     match *problem {
         InputError::DanglingSegment { segment, vertex } => Some((0, [segment, vertex, 0])),
@@ -711,6 +712,14 @@ fn domain_refusal(problem: &InputError) -> Option<(u8, [usize; 3])> {
         InputError::SegmentInsideDomain { segment } => Some((2, [segment, 0, 0])),
         InputError::SegmentOutsideDomain { segment } => Some((3, [segment, 0, 0])),
         InputError::PointOutsideDomain { point } => Some((4, [point, 0, 0])),
+        InputError::NoEnclosedRegion { segments, cause } => {
+            let cause = match cause {
+                Unenclosed::Open => 0,
+                Unenclosed::Holes => 1,
+                Unenclosed::Collinear => 2,
+            };
+            Some((5, [segments, cause, 0]))
+        }
         _ => None,
     }
 }
@@ -730,6 +739,15 @@ fn domain_problem(kind: u8, [a, b, c]: [usize; 3]) -> Option<InputError> {
         2 => InputError::SegmentInsideDomain { segment: a },
         3 => InputError::SegmentOutsideDomain { segment: a },
         4 => InputError::PointOutsideDomain { point: a },
+        5 => InputError::NoEnclosedRegion {
+            segments: a,
+            cause: match b {
+                0 => Unenclosed::Open,
+                1 => Unenclosed::Holes,
+                2 => Unenclosed::Collinear,
+                _ => return None,
+            },
+        },
         _ => return None,
     })
 }
@@ -961,13 +979,26 @@ mod tests {
             InputError::SegmentInsideDomain { segment: 9 },
             InputError::SegmentOutsideDomain { segment: 1 },
             InputError::PointOutsideDomain { point: 12 },
+            InputError::NoEnclosedRegion {
+                segments: 3,
+                cause: Unenclosed::Open,
+            },
+            InputError::NoEnclosedRegion {
+                segments: 4,
+                cause: Unenclosed::Holes,
+            },
+            InputError::NoEnclosedRegion {
+                segments: 1,
+                cause: Unenclosed::Collinear,
+            },
         ];
         for problem in problems {
             let (kind, v) = domain_refusal(&problem).unwrap();
             assert_eq!(domain_problem(kind, v), Some(problem));
         }
         assert_eq!(domain_refusal(&InputError::Empty), None);
-        assert_eq!(domain_problem(5, [0; 3]), None);
+        assert_eq!(domain_problem(5, [2, 3, 0]), None);
+        assert_eq!(domain_problem(6, [0; 3]), None);
     }
 
     #[test]

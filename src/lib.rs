@@ -27,7 +27,7 @@ pub mod reference;
 pub mod registry;
 pub mod report;
 
-pub use error::{Error, InputError, Result};
+pub use error::{Error, InputError, Result, Unenclosed};
 pub use geom::{Hexagon, Point};
 pub use mesh::{Labels, Pslg, Region, TriMesh};
 pub use mesher::{Budget, MeshRun, Mesher, Params, StopReason};

@@ -190,6 +190,13 @@ struct MeshArgs {
     /// before exiting; by default a mesh that fails them is written but exits 1.
     #[arg(long)]
     no_check: bool,
+    /// Mesh a .poly input inside its convex hull (Triangle's -c): the hull's edges are added
+    /// as segments after the file's (split at every point on the hull), for every mesher
+    /// alike, and the mesh is checked against that input. Without it, segments that enclose
+    /// no region are refused (exit 2), as is a segment or point outside the region they
+    /// enclose. A point set keeps its bounding hexagon.
+    #[arg(long)]
+    convex_hull: bool,
 }
 
 #[derive(Args)]
@@ -216,6 +223,10 @@ struct VerifyArgs {
     /// Print the verdict as JSON.
     #[arg(long)]
     json: bool,
+    /// With --input: check against the input inside its convex hull (the hull's edges added
+    /// as segments after the file's), as `mesh --convex-hull` meshed it.
+    #[arg(long)]
+    convex_hull: bool,
 }
 
 /// Runs the command line; `main` returns this.
@@ -278,17 +289,25 @@ fn run(command: Command) -> Result<ExitCode> {
 
 /// Reads INPUT: a file when it exists or has an extension, else a dataset or PSLG example name.
 fn load_input(input: &str) -> Result<Pslg> {
-    load_input_numbered(input).map(|(pslg, _)| pslg)
+    load_input_numbered(input, false).map(|(pslg, _)| pslg)
 }
 
-/// [`load_input`], and the number of the input's first point: the file's, or 1 for a dataset
-/// (as `hexmesh datasets` writes it).
-fn load_input_numbered(input: &str) -> Result<(Pslg, u32)> {
+/// [`load_input`], inside its convex hull when `convex_hull` is set (`Pslg::with_convex_hull`),
+/// checked (`Pslg::check`), and the number of the input's first point: the file's, or 1 for a
+/// dataset (as `hexmesh datasets` writes it).
+fn load_input_numbered(input: &str, convex_hull: bool) -> Result<(Pslg, u32)> {
     let path = Path::new(input);
     if path.exists() || path.extension().is_some() {
-        crate::io::read_input_numbered(path)
+        crate::io::read_input_enclosed(path, convex_hull)
     } else {
-        crate::datasets::by_name(input).map(|pslg| (pslg, 1))
+        let pslg = crate::datasets::by_name(input)?;
+        let pslg = if convex_hull {
+            pslg.with_convex_hull()
+        } else {
+            pslg
+        };
+        pslg.validate_input()?;
+        Ok((pslg, 1))
     }
 }
 
@@ -320,7 +339,7 @@ fn datasets(out: &Path, scaling: bool) -> Result<ExitCode> {
 }
 
 fn mesh(args: &MeshArgs) -> Result<ExitCode> {
-    let (input, input_base) = load_input_numbered(&args.input)?;
+    let (input, input_base) = load_input_numbered(&args.input, args.convex_hull)?;
     input.validate_input()?;
     let mesher = crate::registry::mesher(&args.mesher)?;
     let formats = args
@@ -417,10 +436,16 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     if let Some((bounds, problem)) = failed {
         eprintln!(
             "hexmesh: the {} mesh fails --bounds {bounds}: {problem}; it is written for \
-             inspection (`hexmesh verify {} --input {} --bounds {bounds}` lists every failure)",
+             inspection (`hexmesh verify {} --input {}{} --bounds {bounds}` lists every \
+             failure)",
             mesher.name(),
             args.prefix.display(),
-            args.input
+            args.input,
+            if args.convex_hull {
+                " --convex-hull"
+            } else {
+                ""
+            }
         );
         return Ok(ExitCode::from(1));
     }
@@ -498,7 +523,16 @@ fn verify_name(bounds: &Bounds) -> String {
 fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     let loaded = crate::io::read_any_mesh(&args.prefix)?;
     let mesh = &loaded.mesh;
-    let input = args.input.as_deref().map(load_input_numbered).transpose()?;
+    if args.convex_hull && args.input.is_none() {
+        return Err(Error::Usage(
+            "--convex-hull encloses the input given with --input; there is none".into(),
+        ));
+    }
+    let input = args
+        .input
+        .as_deref()
+        .map(|i| load_input_numbered(i, args.convex_hull))
+        .transpose()?;
     let numbering = Numbering {
         mesh: loaded.first_index,
         input: input.as_ref().map_or(1, |(_, base)| *base),

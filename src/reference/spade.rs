@@ -146,6 +146,9 @@ impl Mesher for SpadeMesher {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        // Every mesher checks its input (`Pslg::check`): segments that enclose no region,
+        // and a segment or point outside the region, are refused here as by ours.
+        input.validate_input()?;
         check_params(NAME, params)?;
         params.refuse_max_edge(
             NAME,
@@ -494,10 +497,31 @@ mod tests {
 
     #[test]
     fn a_hole_seed_on_a_segment_is_refused() {
+        // On the diagonal of a square inside a square (a seed on the boundary would empty
+        // the domain, which `Pslg::check` refuses before spade sees the seed).
         let input = Pslg {
-            points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-            segments: vec![[0, 1], [1, 2], [2, 3], [3, 0]],
-            holes: vec![[0.5, 0.0]],
+            points: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [-1.0, -1.0],
+                [2.0, -1.0],
+                [2.0, 2.0],
+                [-1.0, 2.0],
+            ],
+            segments: vec![
+                [0, 1],
+                [1, 2],
+                [2, 3],
+                [3, 0],
+                [0, 2],
+                [4, 5],
+                [5, 6],
+                [6, 7],
+                [7, 4],
+            ],
+            holes: vec![[0.5, 0.5]],
             hexagon: None,
             ..Pslg::default()
         };

@@ -114,8 +114,19 @@ pub enum InputError {
         /// The 0-based index of the polygon's first segment.
         segment: usize,
     },
-    /// Segment `segment` has no domain on either side (a polygon inside a hole, or a polygon
-    /// emptied by a hole seed with nothing meshed around it).
+    /// The segments enclose no region to mesh: the domain of a PSLG is what its segments
+    /// enclose, minus the regions the hole seeds lie in (Triangle's .poly semantics), and
+    /// nothing is left (`cause` says why).
+    NoEnclosedRegion {
+        /// How many segments the input has.
+        segments: usize,
+        /// Why nothing is enclosed.
+        cause: Unenclosed,
+    },
+    /// Segment `segment` has no domain on either side: it lies outside the region the segments
+    /// enclose or in a hole (a segment beyond the outer boundary, a polygon inside a hole, or
+    /// a polygon emptied by a hole seed with nothing meshed around it), so no mesh of the
+    /// domain has it as edges.
     SegmentOutsideDomain {
         /// The 0-based index of the polygon's first segment.
         segment: usize,
@@ -133,6 +144,17 @@ pub enum InputError {
         /// How far it lies inside the hexagon's nearest edge, in input units.
         distance: f64,
     },
+}
+
+/// Why the segments of a PSLG enclose no region ([`InputError::NoEnclosedRegion`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Unenclosed {
+    /// No closed chain of segments goes around an area (an open polyline, a tree of segments).
+    Open,
+    /// The hole seeds empty every region the segments enclose.
+    Holes,
+    /// Every point lies on one line: not even the points' convex hull encloses an area.
+    Collinear,
 }
 
 impl InputError {
@@ -226,9 +248,31 @@ impl InputError {
                  (polygons with holes) takes no segment inside the domain",
                 n(segment)
             ),
+            InputError::NoEnclosedRegion { segments, cause } => {
+                let why = match cause {
+                    Unenclosed::Open => format!(
+                        "no closed chain of its {segments} segments ({} to {}) goes around an \
+                         area, and the domain of a .poly input is what its segments enclose; \
+                         mesh it inside its convex hull with --convex-hull",
+                        u64::from(first),
+                        (*segments as u64 + u64::from(first)).saturating_sub(1)
+                    ),
+                    Unenclosed::Holes => "the hole seeds empty every region they enclose (a \
+                                          seed removes the whole region it lies in); remove \
+                                          the seed, or mesh around the holes inside the convex \
+                                          hull with --convex-hull"
+                        .to_string(),
+                    Unenclosed::Collinear => "every point lies on one line, so not even their \
+                                              convex hull encloses an area"
+                        .to_string(),
+                };
+                format!("the segments enclose no region: {why}")
+            }
             InputError::SegmentOutsideDomain { segment } => format!(
-                "segment {} has no domain on either side (a polygon inside a hole, or \
-                 emptied by a hole seed)",
+                "segment {} has no domain on either side: it lies outside the region the \
+                 segments enclose, or in a hole (a polygon inside a hole, or emptied by a hole \
+                 seed), so no mesh of the domain can keep it; remove it, or enclose it \
+                 (--convex-hull adds the convex hull's edges)",
                 n(segment)
             ),
             InputError::PointOutsideDomain { point } => format!(

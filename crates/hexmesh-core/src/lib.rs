@@ -73,6 +73,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+mod enclosed;
 pub mod error;
 pub mod geom;
 pub mod io;
@@ -91,7 +92,7 @@ use internals::{hex, refine, rhomb};
 #[doc = include_str!("../README.md")]
 pub struct ReadmeExamples;
 
-pub use error::{Error, InputError, Result};
+pub use error::{Error, InputError, Result, Unenclosed};
 pub use geom::{Hexagon, Point};
 pub use hex::extended::Hex;
 pub use hex::HexSimple;

@@ -206,8 +206,10 @@ impl Pslg {
     /// Checks the input before any mesher sees it: at least one point, finite coordinates,
     /// no duplicate points, segments naming existing distinct vertices, no two segments
     /// crossing or overlapping, no point inside a segment, finite hole seeds, a coordinate
-    /// range that f64 can mesh, and for a point set every point strictly inside its bounding
-    /// hexagon. Returns the first problem found, deterministically.
+    /// range that f64 can mesh, for a point set every point strictly inside its bounding
+    /// hexagon, and for a PSLG a region that the segments enclose with every segment and
+    /// point in it ([`Pslg::check_enclosed`]; [`Pslg::with_convex_hull`] encloses an input in
+    /// its convex hull). Returns the first problem found, deterministically.
     pub fn check(&self) -> std::result::Result<(), InputError> {
         if self.points.is_empty() {
             return Err(InputError::Empty);
@@ -269,7 +271,8 @@ impl Pslg {
                 });
             }
         }
-        self.check_segment_intersections()
+        self.check_segment_intersections()?;
+        self.check_enclosed()
     }
 
     /// Segment–segment and point–segment tests with exact orientation signs. A sweep over

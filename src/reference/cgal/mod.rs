@@ -257,6 +257,9 @@ impl Mesher for Cgal {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        // Every mesher checks its input (`Pslg::check`): segments that enclose no region,
+        // and a segment or point outside the region, are refused here as by ours.
+        input.validate_input()?;
         params.refuse_switches(self.name())?;
         // The regions' area limits are kept with the smallest of them everywhere.
         let params = &Params {
@@ -308,6 +311,9 @@ impl Mesher for CgalConforming {
     }
 
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        // Every mesher checks its input (`Pslg::check`): segments that enclose no region,
+        // and a segment or point outside the region, are refused here as by ours.
+        input.validate_input()?;
         hexmesh_core::mesher::refuse_area_limits(self.name(), input)?;
         params.refuse_switches(self.name())?;
         params.refuse_max_edge(

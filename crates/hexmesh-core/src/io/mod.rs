@@ -149,7 +149,20 @@ pub fn read_input(path: &Path) -> Result<Pslg> {
 /// [`read_input`], and the number of the file's first point (0 or 1), by which messages name
 /// its points, segments and holes (`quality::Numbering::input`).
 pub fn read_input_numbered(path: &Path) -> Result<(Pslg, u32)> {
+    read_input_enclosed(path, false)
+}
+
+/// [`read_input_numbered`], with the convex hull's edges added as segments before the check
+/// when `convex_hull` is set ([`Pslg::with_convex_hull`], Triangle's `-c`): the input is then
+/// the segments, holes and points of the file in its convex hull. The file's segments keep
+/// their numbers; the hull's come after them.
+pub fn read_input_enclosed(path: &Path, convex_hull: bool) -> Result<(Pslg, u32)> {
     let (pslg, source, base) = read_sourced(path)?;
+    let pslg = if convex_hull {
+        pslg.with_convex_hull()
+    } else {
+        pslg
+    };
     match pslg.check() {
         Ok(()) => Ok((pslg, base)),
         Err(problem) => Err(source.locate(&pslg, base, problem)),
@@ -334,6 +347,8 @@ impl Source {
             | InputError::SegmentOutsideDomain { segment } => {
                 at(&self.poly_path, self.segment_line(segment))
             }
+            // The segments as a whole: the line of the first.
+            InputError::NoEnclosedRegion { .. } => at(&self.poly_path, self.segment_line(0)),
             // The later segment is where the conflict shows.
             InputError::CrossingSegments { second, .. } => {
                 at(&self.poly_path, self.segment_line(second))

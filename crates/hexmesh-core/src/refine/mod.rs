@@ -6,7 +6,9 @@
 //!   rule 4.1) with Rivara propagation, driven by a longest-edge heap (their Sec. 4).
 //!
 //! This file holds what both share: the domain a point set is meshed in, the triangles of a
-//! spade triangulation, and the removal of triangles outside the domain or in holes.
+//! spade triangulation, and the carved constrained Delaunay triangulation they start from
+//! (`domain_cdt`, on the triangulation and the removal of triangles outside the domain or in
+//! holes that `Pslg::check` decides the domain with: `crate::enclosed`).
 
 pub mod lsb;
 pub mod saalfeld;
@@ -14,14 +16,15 @@ pub mod saalfeld;
 pub use lsb::{family, family_min_ratio, lsb_descent_check, min_angle, Lsb, LsbRun, Target};
 pub use saalfeld::{ConformingRun, Saalfeld};
 
-use std::collections::{HashMap, HashSet};
+use std::collections::HashSet;
 use std::time::{Duration, Instant};
 
 use spade::handles::FixedVertexHandle;
-use spade::{ConstrainedDelaunayTriangulation, InsertionError, Point2, Triangulation};
+use spade::{InsertionError, Triangulation};
 
+use crate::enclosed::{triangulate, CdtFailure};
 use crate::error::{Error, Result};
-use crate::geom::{orient2d, Point};
+use crate::geom::Point;
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{Budget, StopReason};
 
@@ -32,20 +35,7 @@ pub(crate) fn domain(input: &Pslg) -> Pslg {
     input.reference_domain()
 }
 
-/// Undirected edge key: the smaller vertex first.
-pub(crate) fn ekey(a: u32, b: u32) -> (u32, u32) {
-    if a < b {
-        (a, b)
-    } else {
-        (b, a)
-    }
-}
-
-/// spade refuses coordinates of magnitude below 2^-142 (its exact predicates could underflow);
-/// such a coordinate is indistinguishable from zero at any scale f64 can mesh.
-pub(crate) fn to_spade(p: Point) -> Point2<f64> {
-    spade::mitigate_underflow(Point2::new(p[0], p[1]))
-}
+pub(crate) use crate::enclosed::{carve, ekey, to_spade};
 
 pub(crate) fn insertion_error(mesher: &str, e: InsertionError) -> Error {
     Error::mesher(mesher, format!("spade refused a vertex: {e:?}"))
@@ -75,32 +65,20 @@ pub(crate) fn idx(h: FixedVertexHandle) -> u32 {
 pub fn domain_cdt(input: &Pslg, mesher: &str) -> Result<(TriMesh, Vec<[u32; 2]>)> {
     input.validate_input()?;
     let dom = domain(input);
-    let pts: Vec<Point2<f64>> = dom.points.iter().map(|&p| to_spade(p)).collect();
-    let edges: Vec<[usize; 2]> = dom
-        .segments
-        .iter()
-        .map(|s| [s[0] as usize, s[1] as usize])
-        .collect();
-    let mut conflict = None;
-    let cdt = ConstrainedDelaunayTriangulation::<Point2<f64>>::try_bulk_load_cdt(pts, edges, |e| {
-        conflict.get_or_insert(e);
-    })
-    .map_err(|e| insertion_error(mesher, e))?;
-    if let Some([a, b]) = conflict {
-        return Err(Error::mesher(
+    let triangles = triangulate(&dom.points, &dom.segments).map_err(|e| match e {
+        CdtFailure::Insertion(e) => insertion_error(mesher, e),
+        CdtFailure::Conflict([a, b]) => Error::mesher(
             mesher,
             format!("segment {a}-{b} conflicts with another segment in the triangulation"),
-        ));
-    }
-    if spade::Triangulation::num_vertices(&cdt) != dom.points.len() {
-        return Err(Error::mesher(
+        ),
+        CdtFailure::Coincide => Error::mesher(
             mesher,
             "two input points coincide after flushing tiny coordinates to zero",
-        ));
-    }
+        ),
+    })?;
     let vertices: Vec<Point> = dom.points.clone();
     let barriers: HashSet<(u32, u32)> = dom.segments.iter().map(|s| ekey(s[0], s[1])).collect();
-    let kept = carve(&vertices, &spade_triangles(&cdt), &barriers, &dom.holes);
+    let kept = carve(&vertices, &triangles, &barriers, &dom.holes);
     let (vertices, triangles, map) = compact(&vertices, &kept);
     if triangles.is_empty() {
         return Err(Error::mesher(
@@ -120,68 +98,6 @@ pub fn domain_cdt(input: &Pslg, mesher: &str) -> Result<(TriMesh, Vec<[u32; 2]>)
         },
         segments,
     ))
-}
-
-/// Keeps the triangles inside the domain (Triangle's convention for `.poly` files): triangles
-/// reachable from the convex hull without crossing a segment are outside, and so are those
-/// reachable from a hole seed. `barriers` holds the segment edges as undirected keys.
-/// The flood runs in index order, so the result does not depend on hash order.
-pub(crate) fn carve(
-    vertices: &[Point],
-    triangles: &[[u32; 3]],
-    barriers: &HashSet<(u32, u32)>,
-    holes: &[Point],
-) -> Vec<[u32; 3]> {
-    let mut by_edge: HashMap<(u32, u32), usize> = HashMap::with_capacity(triangles.len() * 3);
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            by_edge.insert((tri[k], tri[(k + 1) % 3]), t);
-        }
-    }
-    let mut outside = vec![false; triangles.len()];
-    let mut stack: Vec<usize> = Vec::new();
-    for (t, tri) in triangles.iter().enumerate() {
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if !by_edge.contains_key(&(b, a)) && !barriers.contains(&ekey(a, b)) && !outside[t] {
-                outside[t] = true;
-                stack.push(t);
-            }
-        }
-    }
-    for &h in holes {
-        let hit = triangles.iter().position(|tri| {
-            let [a, b, c] = tri.map(|v| vertices[v as usize]);
-            orient2d(a, b, h) >= 0.0 && orient2d(b, c, h) >= 0.0 && orient2d(c, a, h) >= 0.0
-        });
-        if let Some(t) = hit {
-            if !outside[t] {
-                outside[t] = true;
-                stack.push(t);
-            }
-        }
-    }
-    while let Some(t) = stack.pop() {
-        let tri = triangles[t];
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            if barriers.contains(&ekey(a, b)) {
-                continue;
-            }
-            if let Some(&n) = by_edge.get(&(b, a)) {
-                if !outside[n] {
-                    outside[n] = true;
-                    stack.push(n);
-                }
-            }
-        }
-    }
-    triangles
-        .iter()
-        .zip(&outside)
-        .filter(|(_, &o)| !o)
-        .map(|(t, _)| *t)
-        .collect()
 }
 
 /// Drops vertices no triangle uses (those outside the domain), keeping the order of the rest,

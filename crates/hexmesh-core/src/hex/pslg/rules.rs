@@ -7,10 +7,25 @@
 //!   "two consecutive" segments; segments meeting at one input point are consecutive at that
 //!   point, and three or more of them meeting there are allowed too (ours: subdividing cannot
 //!   separate them near their common point).
+//!
+//! The rules run in rounds until none fires (`apply_rules`). Each round subdivides at least
+//! one hexagon or the loop stops with an error naming the cell it stuck at, so the number of
+//! subdivisions, bounded by the lattice's depth and the hierarchy's budgets (steps, vertices,
+//! time: `Hierarchy::subdivide` stops at each), measures the loop's progress. A round costs
+//! what the previous one changed: the assignment is updated, not recomputed
+//! (`assign::Assignment`), and the rules of Sec. 7.2 are examined only at the crossed cells near
+//! the previous round's subdivisions (the same cells whose Sec. 5.2 rules are examined,
+//! `extended::rules::around`): the rules at a crossed cell read the cell, its neighbours, their
+//! neighbours and the parents of its neighbours, which are all within that neighbourhood of a
+//! subdivision that changes them. A wave of subdivisions along a long segment (the finest level
+//! near its end carried along it by the rule against fins) takes a round per cell; it took
+//! minutes when every round recomputed every crossed cell (fixture
+//! tests/fixtures/hex/pslg-spade-issue96-box-hang.poly).
 
 use std::collections::BTreeMap;
 
-use super::{crossed_cells, PslgStats};
+use super::assign::Assignment;
+use super::PslgStats;
 use crate::geom::Point;
 use crate::hex::classify::{fin_mask, rings};
 use crate::hex::extended::rules::{around, extended_actions};
@@ -18,6 +33,7 @@ use crate::hex::lattice::{Key, KeySet};
 use crate::hex::refine::{drain, is_fin};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::Pslg;
+use crate::mesher::StopReason;
 
 /// True when the segments `set` all share one endpoint (one segment trivially does).
 fn share_an_endpoint(input: &Pslg, set: &[u32]) -> bool {
@@ -32,8 +48,25 @@ fn share_an_endpoint(input: &Pslg, set: &[u32]) -> bool {
 /// The cells the rules of Sec. 7.2 (module docs) want subdivided (full leaves) or made full
 /// (semi-hexagons and absent cells), sorted.
 pub fn segment_actions(h: &Hierarchy, input: &Pslg, crossed: &BTreeMap<Key, Vec<u32>>) -> Vec<Key> {
+    segment_actions_among(h, input, crossed, None)
+}
+
+/// `segment_actions` at the crossed cells among `only` (all of them for `None`).
+fn segment_actions_among(
+    h: &Hierarchy,
+    input: &Pslg,
+    crossed: &BTreeMap<Key, Vec<u32>>,
+    only: Option<&KeySet>,
+) -> Vec<Key> {
     let mut acts = Vec::new();
-    for (&key, set) in crossed {
+    let examined: Vec<(Key, &Vec<u32>)> = match only {
+        None => crossed.iter().map(|(&k, set)| (k, set)).collect(),
+        Some(only) => only
+            .iter()
+            .filter_map(|k| crossed.get(&k).map(|set| (k, set)))
+            .collect(),
+    };
+    for (key, set) in examined {
         match h.cell(key) {
             Cell::Semi { .. } => acts.push(key),
             Cell::Full { subdivided: false } => {
@@ -79,7 +112,9 @@ pub(super) fn apply(h: &mut Hierarchy, actions: Vec<Key>) -> std::result::Result
 }
 
 /// Applies the rules of Sec. 5.2 (to `candidates` and the cells around later splits) and of
-/// Sec. 7.2 (to every crossed leaf) until none fires; returns the final assignment.
+/// Sec. 7.2 (to every crossed leaf, then to those around later splits) until none fires;
+/// returns the final assignment. A round whose rules fire but subdivide nothing is an error
+/// naming the first cell they asked for (module docs), never an endless loop.
 pub(super) fn apply_rules(
     h: &mut Hierarchy,
     input: &Pslg,
@@ -87,22 +122,40 @@ pub(super) fn apply_rules(
     mut candidates: KeySet,
     stats: &mut PslgStats,
 ) -> std::result::Result<BTreeMap<Key, Vec<u32>>, Stop> {
+    let mut assignment = Assignment::new(h, segments);
+    let mut first = true;
     loop {
         h.check_time()?;
-        let crossed = crossed_cells(h, segments);
         let mut actions: Vec<Key> = extended_actions(h, &rings(h), &candidates)
             .into_iter()
             .map(|(k, _)| k)
             .collect();
-        actions.extend(segment_actions(h, input, &crossed));
+        let only = (!first).then_some(&candidates);
+        actions.extend(segment_actions_among(h, input, assignment.crossed(), only));
+        first = false;
         actions.sort();
         actions.dedup();
-        if actions.is_empty() {
-            return Ok(crossed);
+        let Some(&stuck) = actions.first() else {
+            return Ok(assignment.into_crossed());
+        };
+        let splits = apply(h, actions)?;
+        if splits == 0 {
+            return Err(stalled(h, stuck));
         }
-        stats.rule_splits += apply(h, actions)?;
+        stats.rule_splits += splits;
+        assignment.update(h, &h.log);
         candidates = around(&h.log);
     }
+}
+
+/// The stop of a rule round that subdivided nothing, naming the first cell it asked for.
+fn stalled(h: &Hierarchy, key: Key) -> Stop {
+    let c = h.lattice.center(key);
+    Stop::Budget(StopReason::Stalled(format!(
+        "the refinement rules of Sec. 5.2 and 7.2 ask for cell (level {}, {}, {}) at ({:?}, \
+         {:?}) to be subdivided or made full, but their round subdivided nothing",
+        key.k, key.i, key.j, c[0], c[1]
+    )))
 }
 
 #[cfg(test)]
@@ -120,5 +173,110 @@ mod tests {
         assert!(share_an_endpoint(&p, &[0, 2]));
         assert!(!share_an_endpoint(&p, &[1, 2]));
         assert!(!share_an_endpoint(&p, &[0, 1, 2]));
+    }
+
+    /// A unit square with two nearly parallel segments 1/64 apart inside it, one of them
+    /// continued by a dangling segment: the rules refine between the two down to a level that
+    /// separates them and carry that level along the chain, a round per cell.
+    fn close_parallel_pair() -> Pslg {
+        Pslg {
+            points: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [0.2, 0.5],
+                [0.6, 0.5],
+                [0.3, 0.515625],
+                [0.7, 0.515625],
+                [0.8, 0.2],
+            ],
+            segments: vec![[0, 1], [1, 2], [2, 3], [3, 0], [4, 5], [6, 7], [7, 8]],
+            ..Pslg::default()
+        }
+    }
+
+    fn refined_hierarchy(input: &Pslg) -> Hierarchy {
+        let params = crate::mesher::Params::default();
+        let mut h = crate::hex::new_hierarchy(&super::super::point_set(input), &params, "hex")
+            .expect("a hierarchy");
+        crate::hex::refine::refine_simple(&mut h).expect("the simple refinement");
+        h
+    }
+
+    #[test]
+    fn the_kept_assignment_is_the_one_computed_afresh_after_every_round() {
+        use super::super::assign::crossed_cells;
+        let input = close_parallel_pair();
+        let segments = super::super::segment_points(&input);
+        let mut h = refined_hierarchy(&input);
+        let mut kept = Assignment::new(&h, &segments);
+        assert_eq!(kept.crossed(), &crossed_cells(&h, &segments));
+        let mut rounds = 0;
+        loop {
+            let actions = segment_actions(&h, &input, kept.crossed());
+            if actions.is_empty() {
+                break;
+            }
+            apply(&mut h, actions).expect("within the lattice");
+            kept.update(&h, &h.log);
+            rounds += 1;
+            assert_eq!(
+                kept.crossed(),
+                &crossed_cells(&h, &segments),
+                "round {rounds}"
+            );
+        }
+        assert!(
+            rounds > 10,
+            "only {rounds} rounds: the wave this test is about did not run"
+        );
+    }
+
+    #[test]
+    fn the_rule_loop_stops_where_no_rule_fires_at_any_crossed_cell() {
+        use super::super::assign::crossed_cells;
+        let input = close_parallel_pair();
+        let segments = super::super::segment_points(&input);
+        let mut h = refined_hierarchy(&input);
+        let all: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
+        let mut stats = PslgStats::default();
+        let crossed = apply_rules(&mut h, &input, &segments, all, &mut stats).expect("rules");
+        assert!(stats.rule_splits > 0);
+        assert_eq!(crossed, crossed_cells(&h, &segments));
+        // Examined everywhere, not only near the last round's subdivisions, no rule fires.
+        assert_eq!(segment_actions(&h, &input, &crossed), Vec::<Key>::new());
+        let leaves: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
+        assert!(extended_actions(&h, &rings(&h), &leaves).is_empty());
+    }
+
+    /// tests/fixtures/hex/rules-one-segment-batch-order.poly: a batch that both joined a
+    /// semi-hexagon and subdivided the cell it made full gave a segment endpoint's hexagon a
+    /// fin every round, one level deeper each round without end (`apply` decides each key on
+    /// the state the batch was computed on).
+    #[test]
+    fn one_segment_reaches_the_fixed_point_of_the_rules() {
+        let name = "rules-one-segment-batch-order.poly";
+        let text =
+            include_str!("../../../../../tests/fixtures/hex/rules-one-segment-batch-order.poly");
+        let poly = crate::io::parse_poly(std::path::Path::new(name), text).expect(name);
+        let base = poly.nodes.first_index;
+        let input = Pslg {
+            points: poly.nodes.points.clone(),
+            segments: poly.segments.iter().map(|s| s.map(|v| v - base)).collect(),
+            ..Pslg::default()
+        };
+        let segments = super::super::segment_points(&input);
+        let params = crate::mesher::Params::default().with_budget(crate::mesher::Budget {
+            max_steps: Some(5_000),
+            ..crate::mesher::Budget::default()
+        });
+        let mut h = crate::hex::new_hierarchy(&super::super::point_set(&input), &params, "hex")
+            .expect("a hierarchy");
+        crate::hex::refine::refine_simple(&mut h).expect("the simple refinement");
+        let all: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
+        let mut stats = PslgStats::default();
+        let crossed = apply_rules(&mut h, &input, &segments, all, &mut stats);
+        assert!(crossed.is_ok_and(|c| !c.is_empty()), "{:?}", stats);
     }
 }

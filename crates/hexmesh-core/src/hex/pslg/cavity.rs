@@ -38,6 +38,9 @@ pub(super) struct Built {
     pub on_segment: Vec<bool>,
     /// For each triangle, true when it is not a triangle of the hexagon dual.
     pub cavity: Vec<bool>,
+    /// Triangles touching a segment that break the near-segment bounds and that no edit of
+    /// the band repaired.
+    pub stuck: Vec<usize>,
 }
 
 /// How many points `band` may insert per triangle of the mesh it improves (its budget).
@@ -190,9 +193,22 @@ pub(super) fn insert_segments(
         keys.push(keys[v as usize]);
     }
     stats.band_left += left.len() as u64;
-    let mut triangles: Vec<[u32; 3]> = (0..band.tris.len())
-        .filter(|&t| band.alive[t])
-        .map(|t| band.tris[t])
+    let mut position = vec![usize::MAX; band.tris.len()];
+    let mut triangles: Vec<[u32; 3]> = Vec::new();
+    for (t, slot) in position.iter_mut().enumerate() {
+        if band.alive[t] {
+            *slot = triangles.len();
+            triangles.push(band.tris[t]);
+        }
+    }
+    let stuck: Vec<usize> = left
+        .iter()
+        .filter(|&&t| {
+            band.tris[t as usize]
+                .iter()
+                .any(|&v| !band.segs[v as usize].is_empty())
+        })
+        .map(|&t| position[t as usize])
         .collect();
     // A triangle off the segments the band could not repair (a notch of three dual
     // vertices) is flipped towards the segment as before the band existed (`flip`), which
@@ -240,6 +256,7 @@ pub(super) fn insert_segments(
         keys: out_keys,
         on_segment: out_on,
         cavity,
+        stuck,
     })
 }
 

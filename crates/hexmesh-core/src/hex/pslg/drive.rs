@@ -9,7 +9,7 @@
 
 use super::cavity::{insert_segments, Built};
 use super::rules::{apply, apply_rules};
-use super::{leaf_of_vertex, PslgStats, MAX_GROWTH, MAX_ROUNDS, NAME};
+use super::{leaf_of_vertex, PslgStats, MAX_GROWTH, MAX_ROUNDS, NAME, NEAR_ROUNDS};
 use crate::error::Error;
 use crate::geom::{incircle, Point};
 use crate::hex::classify::rings;
@@ -55,11 +55,21 @@ pub(super) fn drive(
     crate::hex::size::refine(h)?;
     let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
     let mut first_size = None;
+    // The last mesh whose interior passed, kept with its hierarchy while subdivisions try to
+    // repair the near-segment triangles the band left: if they fail, it is the answer.
+    let mut fallback: Option<(Hierarchy, TriMesh, Vec<bool>)> = None;
+    let min_edge = crate::quality::closest_pair(&input.points).map_or(0.0, |c| {
+        c.distance * crate::quality::bounds::HEX.min_edge_over_dmin
+    });
     loop {
         stats.rounds += 1;
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         let first = *first_size.get_or_insert(h.full_leaves);
         if h.full_leaves > MAX_GROWTH * first {
+            if let Some((old, mesh, on)) = fallback.take() {
+                *h = old;
+                return Ok((mesh, on));
+            }
             return Err(Fail::Error(Error::mesher(
                 NAME,
                 format!(
@@ -80,8 +90,24 @@ pub(super) fn drive(
         let (moved, patch) = relocations(h, &r);
         let (dual, keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
         let built = insert_segments(h, input, segments, &crossed, dual, keys, stats)?;
-        let bad = interior_offenders(&built);
-        if bad.is_empty() {
+        let mut bad = interior_offenders(&built);
+        if !bad.is_empty() {
+            if let Some((old, mesh, on)) = fallback.take() {
+                *h = old;
+                return Ok((mesh, on));
+            }
+        }
+        // A lattice refined for the near-segment triangles must not go below the Sec. 6.3
+        // shortest edge away from the segments; where it would, the mesh before it is the
+        // answer.
+        if fallback.is_some() && bad.is_empty() && interior_edge_below(&built, min_edge) {
+            if let Some((old, mesh, on)) = fallback.take() {
+                *h = old;
+                return Ok((mesh, on));
+            }
+        }
+        let near_only = bad.is_empty() && !built.stuck.is_empty() && stats.rounds < NEAR_ROUNDS;
+        if bad.is_empty() && !near_only {
             let violations = validate(
                 &built.mesh,
                 Some(input),
@@ -97,6 +123,12 @@ pub(super) fn drive(
                 )));
             }
             return Ok((built.mesh, built.on_segment));
+        }
+        if near_only {
+            // Ours: the band left near-segment triangles it could not repair; a finer lattice
+            // there gives it other points to work with.
+            fallback = Some((h.clone(), built.mesh.clone(), built.on_segment.clone()));
+            bad = built.stuck.clone();
         }
         if stats.rounds >= MAX_ROUNDS {
             let t = bad[0];
@@ -132,6 +164,21 @@ pub(super) fn drive(
         stats.verify_splits += apply(h, split)?;
         candidates = around(&h.log);
     }
+}
+
+/// True when a triangle with no corner on a segment has an edge shorter than `min_edge`.
+fn interior_edge_below(b: &Built, min_edge: f64) -> bool {
+    let mesh = &b.mesh;
+    mesh.triangles.iter().any(|t| {
+        t.iter().all(|&v| !b.on_segment[v as usize])
+            && (0..3).any(|e| {
+                let (p, q) = (
+                    mesh.vertices[t[e] as usize],
+                    mesh.vertices[t[(e + 1) % 3] as usize],
+                );
+                crate::geom::dist(p, q) < min_edge
+            })
+    })
 }
 
 /// Triangles with no corner on a segment that break the Sec. 6 angle bounds, or sit on an edge

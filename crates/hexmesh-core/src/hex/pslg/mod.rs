@@ -93,6 +93,10 @@ use rules::apply_rules;
 /// Rounds of mesh-then-check before the mesher gives up on a configuration.
 pub const MAX_ROUNDS: u64 = 6;
 
+/// Rounds after which the near-segment triangles the band could not repair are left as they
+/// are rather than subdivided around (`drive`).
+pub const NEAR_ROUNDS: u64 = 4;
+
 /// The self-check's subdivisions may make the hierarchy at most this many times larger than
 /// after the first round: a subdivision next to a segment refines the whole band along it
 /// (Sec. 7.2), so a configuration that subdivision does not repair would grow the mesh

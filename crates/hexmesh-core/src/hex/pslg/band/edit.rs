@@ -1,0 +1,480 @@
+//! The triangulation the band edits (ours): neighbours, undoable edits, Lawson flips,
+//! Bowyer–Watson insertion on a segment piece, and removal of a vertex with its hole
+//! triangulated again; every sign is an exact predicate.
+
+use super::{Band, Cost, NONE};
+use crate::geom::{incircle, orient2d, Point};
+
+/// What an edit changed, to undo it.
+#[derive(Default)]
+pub(super) struct Log {
+    pub(super) tris_len: usize,
+    pub(super) verts_len: usize,
+    pub(super) killed: Vec<u32>,
+    pub(super) nbr: Vec<(u32, usize, u32)>,
+    pub(super) vtri: Vec<(u32, u32)>,
+}
+
+impl Band<'_> {
+    pub(super) fn set_nbr(&mut self, t: u32, i: usize, n: u32) {
+        if let Some(log) = &mut self.log {
+            log.nbr.push((t, i, self.nbr[t as usize][i]));
+        }
+        self.nbr[t as usize][i] = n;
+    }
+
+    pub(super) fn set_vtri(&mut self, v: u32, t: u32) {
+        if let Some(log) = &mut self.log {
+            log.vtri.push((v, self.vtri[v as usize]));
+        }
+        self.vtri[v as usize] = t;
+    }
+
+    pub(super) fn begin(&mut self) {
+        self.log = Some(Log {
+            tris_len: self.tris.len(),
+            verts_len: self.verts.len(),
+            ..Log::default()
+        });
+    }
+
+    pub(super) fn rollback(&mut self) {
+        let Some(log) = self.log.take() else { return };
+        for &(t, i, old) in log.nbr.iter().rev() {
+            self.nbr[t as usize][i] = old;
+        }
+        for &(v, old) in log.vtri.iter().rev() {
+            self.vtri[v as usize] = old;
+        }
+        for &t in &log.killed {
+            self.alive[t as usize] = true;
+        }
+        self.tris.truncate(log.tris_len);
+        self.nbr.truncate(log.tris_len);
+        self.alive.truncate(log.tris_len);
+        self.verts.truncate(log.verts_len);
+        self.segs.truncate(log.verts_len);
+        self.origin.truncate(log.verts_len);
+        self.vtri.truncate(log.verts_len);
+    }
+
+    /// The change of the measure the open edit made.
+    pub(super) fn edit_cost(&self) -> Cost {
+        let Some(log) = &self.log else {
+            return Cost::default();
+        };
+        let mut c = Cost::default();
+        for t in log.tris_len..self.tris.len() {
+            c.add(self.cost(t as u32));
+        }
+        for &t in &log.killed {
+            c.sub(self.cost(t));
+        }
+        c
+    }
+
+    /// The slot of `t`'s edge from x to y, counter-clockwise.
+    pub(super) fn slot(&self, t: u32, x: u32, y: u32) -> Option<usize> {
+        let tri = self.tris[t as usize];
+        (0..3).find(|&i| tri[(i + 1) % 3] == x && tri[(i + 2) % 3] == y)
+    }
+
+    /// Lawson flips of every edge that is not a segment piece and fails the exact
+    /// empty-circle test, until none does: the constrained Delaunay triangulation.
+    pub(in super::super) fn make_delaunay(&mut self) {
+        let mut stack: Vec<u32> = (0..self.tris.len() as u32).rev().collect();
+        // Each flip strictly raises the triangulation in the lifting map: finite.
+        while let Some(t) = stack.pop() {
+            if !self.alive[t as usize] {
+                continue;
+            }
+            for i in 0..3 {
+                let o = self.nbr[t as usize][i];
+                if o == NONE {
+                    continue;
+                }
+                let tri = self.tris[t as usize];
+                let (x, y, w) = (tri[(i + 1) % 3], tri[(i + 2) % 3], tri[i]);
+                if self.piece(x, y).is_some() {
+                    continue;
+                }
+                let Some(j) = self.slot(o, y, x) else {
+                    continue;
+                };
+                let d = self.tris[o as usize][j];
+                let p = |v: u32| self.verts[v as usize];
+                if incircle(p(w), p(x), p(y), p(d)) <= 0.0 {
+                    continue;
+                }
+                // The quadrilateral w x d y is convex when the circle test fails.
+                if orient2d(p(w), p(x), p(d)) <= 0.0 || orient2d(p(w), p(d), p(y)) <= 0.0 {
+                    continue;
+                }
+                self.flip(t, i, o, j);
+                self.flips += 1;
+                stack.push(t);
+                stack.push(o);
+                break;
+            }
+        }
+    }
+
+    /// Flips the edge between `t` (opposite its corner i) and `o` (opposite its corner j).
+    pub(super) fn flip(&mut self, t: u32, i: usize, o: u32, j: usize) {
+        let tri = self.tris[t as usize];
+        let (w, x, y) = (tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]);
+        let d = self.tris[o as usize][j];
+        // Outer neighbours: across x-d (of o), d-y (of o), y-w (of t), w-x (of t).
+        let n_yw = self.nbr[t as usize][(i + 1) % 3];
+        let n_wx = self.nbr[t as usize][(i + 2) % 3];
+        let ot = self.tris[o as usize];
+        let n_xd = self.nbr[o as usize][(0..3).find(|&k| ot[k] == y).unwrap_or(0)];
+        let n_dy = self.nbr[o as usize][(0..3).find(|&k| ot[k] == x).unwrap_or(0)];
+        // t = (w, x, d), o = (w, d, y).
+        self.tris[t as usize] = [w, x, d];
+        self.tris[o as usize] = [w, d, y];
+        self.nbr[t as usize] = [n_xd, o, n_wx];
+        self.nbr[o as usize] = [n_dy, n_yw, t];
+        for (n, a, b, new) in [(n_xd, d, x, t), (n_yw, w, y, o)] {
+            if n != NONE {
+                if let Some(s) = self.slot(n, a, b) {
+                    self.nbr[n as usize][s] = new;
+                }
+            }
+        }
+        for v in [w, x, d] {
+            self.vtri[v as usize] = t;
+        }
+        self.vtri[y as usize] = o;
+    }
+
+    /// The parameter of `p` along segment `s` (0 at its first end, 1 at its second).
+    pub(super) fn param(&self, s: u32, p: Point) -> f64 {
+        let [a, b] = self.segments[s as usize];
+        if p == a {
+            return 0.0;
+        }
+        if p == b {
+            return 1.0;
+        }
+        let d = [b[0] - a[0], b[1] - a[1]];
+        ((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / (d[0] * d[0] + d[1] * d[1])
+    }
+
+    pub(super) fn at(&self, s: u32, t: f64) -> Point {
+        let [a, b] = self.segments[s as usize];
+        [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+    }
+
+    /// Replaces the live triangles `killed` by `made` (which must tile the same region),
+    /// inside an open edit: neighbours across the region's boundary are kept.
+    pub(super) fn replace(&mut self, killed: &[u32], made: &[[u32; 3]]) {
+        let mut outer: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
+        for &t in killed {
+            let tri = self.tris[t as usize];
+            for i in 0..3 {
+                let n = self.nbr[t as usize][i];
+                if n != NONE && killed.contains(&n) {
+                    continue;
+                }
+                outer.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), n);
+            }
+        }
+        for &t in killed {
+            self.alive[t as usize] = false;
+            if let Some(log) = &mut self.log {
+                log.killed.push(t);
+            }
+        }
+        let first = self.tris.len() as u32;
+        let mut inner: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
+        for (k, &tri) in made.iter().enumerate() {
+            self.tris.push(tri);
+            self.nbr.push([NONE; 3]);
+            self.alive.push(true);
+            for i in 0..3 {
+                inner.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), first + k as u32);
+            }
+        }
+        for (k, &tri) in made.iter().enumerate() {
+            let t = first + k as u32;
+            for i in 0..3 {
+                let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                if let Some(&o) = inner.get(&(y, x)) {
+                    self.nbr[t as usize][i] = o;
+                } else if let Some(&n) = outer.get(&(x, y)) {
+                    self.nbr[t as usize][i] = n;
+                    if n != NONE {
+                        if let Some(sl) = self.slot(n, y, x) {
+                            self.set_nbr(n, sl, t);
+                        }
+                    }
+                }
+            }
+            for &v in &tri {
+                self.set_vtri(v, t);
+            }
+        }
+    }
+
+    /// Inserts the point at parameter `param` of segment `s` into the piece uv (an edge of
+    /// triangle `t0`), Bowyer–Watson (module docs), inside an open edit. False when the point
+    /// cannot be inserted validly (nothing changed then).
+    pub(super) fn insert_on_piece(&mut self, t0: u32, u: u32, v: u32, s: u32, param: f64) -> bool {
+        let p = self.at(s, param);
+        if p == self.verts[u as usize] || p == self.verts[v as usize] {
+            return false;
+        }
+        let Some(i0) = (0..3).find(|&i| {
+            let tri = self.tris[t0 as usize];
+            let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            (x, y) == (u, v) || (x, y) == (v, u)
+        }) else {
+            return false;
+        };
+        let mut region: Vec<u32> = vec![t0];
+        let t1 = self.nbr[t0 as usize][i0];
+        if t1 != NONE {
+            region.push(t1);
+        }
+        let mut k = 0;
+        while k < region.len() {
+            let t = region[k];
+            k += 1;
+            for i in 0..3 {
+                let n = self.nbr[t as usize][i];
+                if n == NONE || region.contains(&n) {
+                    continue;
+                }
+                let tri = self.tris[t as usize];
+                let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                if self.piece(x, y).is_some() {
+                    continue;
+                }
+                let [a, b, c] = self.corners(n);
+                if incircle(a, b, c, p) > 0.0 {
+                    region.push(n);
+                }
+            }
+            if region.len() > 64 {
+                return false;
+            }
+        }
+        let w = self.verts.len() as u32;
+        // The region's boundary, counter-clockwise, without the split piece, fanned from w.
+        let mut made: Vec<[u32; 3]> = Vec::new();
+        for &t in &region {
+            let tri = self.tris[t as usize];
+            for i in 0..3 {
+                let n = self.nbr[t as usize][i];
+                if n != NONE && region.contains(&n) {
+                    continue;
+                }
+                let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                if (x, y) == (u, v) || (x, y) == (v, u) {
+                    continue;
+                }
+                if orient2d(self.verts[x as usize], self.verts[y as usize], p) <= 0.0 {
+                    return false;
+                }
+                made.push([x, y, w]);
+            }
+        }
+        self.verts.push(p);
+        self.segs.push(vec![s]);
+        self.origin.push(u);
+        self.vtri.push(NONE);
+        self.replace(&region, &made);
+        true
+    }
+
+    /// The triangles around `w` counter-clockwise (starting after the boundary when `w` lies
+    /// on the mesh's boundary), and whether they close around it.
+    pub(super) fn star_ccw(&self, w: u32) -> (Vec<u32>, bool) {
+        let start = self.vtri[w as usize];
+        if start == NONE || !self.alive[start as usize] {
+            return (Vec::new(), false);
+        }
+        let at = |t: u32| (0..3).find(|&k| self.tris[t as usize][k] == w);
+        // Clockwise to the boundary (or all the way round).
+        let mut first = start;
+        let mut closed = false;
+        for _ in 0..64 {
+            let Some(m) = at(first) else {
+                return (Vec::new(), false);
+            };
+            let n = self.nbr[first as usize][(m + 2) % 3];
+            if n == NONE {
+                break;
+            }
+            if n == start {
+                closed = true;
+                break;
+            }
+            first = n;
+        }
+        let first = if closed { start } else { first };
+        let mut out = vec![first];
+        let mut t = first;
+        for _ in 0..64 {
+            let Some(m) = at(t) else {
+                return (Vec::new(), false);
+            };
+            let n = self.nbr[t as usize][(m + 1) % 3];
+            if n == NONE || n == first {
+                break;
+            }
+            out.push(n);
+            t = n;
+        }
+        (out, closed)
+    }
+
+    /// Removes vertex `w` (not an input point) inside an open edit, and triangulates the hole
+    /// again (`polygon_delaunay`): a point on a segment joins its two pieces and each side
+    /// of the segment is triangulated apart; a vertex off the segments must have its star
+    /// closed around it. False when that fails (nothing changed).
+    pub(super) fn delete_vertex(&mut self, w: u32) -> bool {
+        if (w as usize) < self.n_fixed || self.segs[w as usize].len() > 1 {
+            return false;
+        }
+        let (star, closed) = self.star_ccw(w);
+        if star.is_empty() {
+            return false;
+        }
+        // The ring of neighbours counter-clockwise.
+        let mut ring: Vec<u32> = Vec::new();
+        for &t in &star {
+            let tri = self.tris[t as usize];
+            let m = (0..3).find(|&k| tri[k] == w).unwrap_or(0);
+            if ring.is_empty() {
+                ring.push(tri[(m + 1) % 3]);
+            }
+            ring.push(tri[(m + 2) % 3]);
+        }
+        if closed {
+            ring.pop();
+        }
+        let chains: Vec<Vec<u32>> = match self.segs[w as usize].first() {
+            None => {
+                if !closed {
+                    return false;
+                }
+                vec![ring]
+            }
+            Some(&s) => {
+                let on: Vec<usize> = (0..ring.len())
+                    .filter(|&i| self.segs[ring[i] as usize].contains(&s))
+                    .collect();
+                if on.len() != 2 {
+                    return false;
+                }
+                if closed {
+                    let (i, j) = (on[0], on[1]);
+                    let a: Vec<u32> = (i..=j).map(|k| ring[k]).collect();
+                    let b: Vec<u32> = (j..=i + ring.len()).map(|k| ring[k % ring.len()]).collect();
+                    vec![a, b]
+                } else {
+                    if on != [0, ring.len() - 1] {
+                        return false;
+                    }
+                    vec![ring]
+                }
+            }
+        };
+        let mut made: Vec<[u32; 3]> = Vec::new();
+        for chain in &chains {
+            if !self.polygon_delaunay(chain, &mut made) {
+                return false;
+            }
+        }
+        self.replace(&star, &made);
+        true
+    }
+
+    /// Triangulates the counter-clockwise polygon `poly` (closed by its last-to-first edge)
+    /// as a Delaunay triangulation inside it: on the base edge, the apex whose circle holds no
+    /// other vertex in front of the edge, its two sides inside the polygon, then both parts.
+    pub(super) fn polygon_delaunay(&self, poly: &[u32], out: &mut Vec<[u32; 3]>) -> bool {
+        if poly.len() < 3 {
+            return true;
+        }
+        let p = |v: u32| self.verts[v as usize];
+        let (a, b) = (poly[poly.len() - 1], poly[0]);
+        let mut best: Option<usize> = None;
+        for k in 1..poly.len() - 1 {
+            let c = poly[k];
+            if orient2d(p(a), p(b), p(c)) <= 0.0 {
+                continue;
+            }
+            if let Some(j) = best {
+                if incircle(p(a), p(b), p(poly[j]), p(c)) > 0.0 {
+                    best = Some(k);
+                }
+            } else {
+                best = Some(k);
+            }
+        }
+        let Some(k) = best else {
+            return false;
+        };
+        let c = poly[k];
+        // The sides a-c and c-b must not cross the polygon.
+        let crosses = |x: u32, y: u32| {
+            (0..poly.len()).any(|i| {
+                let (e, f) = (poly[i], poly[(i + 1) % poly.len()]);
+                if [e, f].contains(&x) || [e, f].contains(&y) {
+                    return false;
+                }
+                let o1 = orient2d(p(x), p(y), p(e));
+                let o2 = orient2d(p(x), p(y), p(f));
+                let o3 = orient2d(p(e), p(f), p(x));
+                let o4 = orient2d(p(e), p(f), p(y));
+                o1 * o2 <= 0.0 && o3 * o4 <= 0.0
+            })
+        };
+        if (k != poly.len() - 2 && crosses(a, c)) || (k != 1 && crosses(c, b)) {
+            return false;
+        }
+        out.push([a, b, c]);
+        self.polygon_delaunay(&poly[..=k], out) && self.polygon_delaunay(&poly[k..], out)
+    }
+
+    /// The live triangles around vertex `v`.
+    pub(super) fn star(&self, v: u32) -> Vec<u32> {
+        let start = self.vtri[v as usize];
+        if start == NONE || !self.alive[start as usize] {
+            return Vec::new();
+        }
+        let mut out = vec![start];
+        // Counter-clockwise: across the edge (v, next) ... walk both ways.
+        for dir in 0..2 {
+            let mut t = start;
+            loop {
+                let tri = self.tris[t as usize];
+                let Some(m) = (0..3).find(|&k| tri[k] == v) else {
+                    break;
+                };
+                // dir 0: across edge (v, tri[m+1]) i.e. opposite tri[m+2]; dir 1: opposite m+1.
+                let i = if dir == 0 { (m + 2) % 3 } else { (m + 1) % 3 };
+                let n = self.nbr[t as usize][i];
+                if n == NONE || n == start || out.contains(&n) {
+                    break;
+                }
+                out.push(n);
+                t = n;
+                if out.len() > 64 {
+                    break;
+                }
+            }
+        }
+        out
+    }
+
+    /// A triangle with the edge uv.
+    pub(super) fn edge_triangle(&self, u: u32, v: u32) -> Option<u32> {
+        self.star(u)
+            .into_iter()
+            .find(|&t| self.tris[t as usize].contains(&v))
+    }
+}

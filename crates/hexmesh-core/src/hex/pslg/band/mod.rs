@@ -1,0 +1,570 @@
+//! Quality along the segments (ours; paper 000 Sec. 7 promises nothing there): the mesh after
+//! `cavity` is made a constrained Delaunay triangulation by Lawson flips, then improved by
+//! inserting points on the segments only, each chosen among a few candidates for the one that
+//! lowers the measure (bad triangles, then their summed excess) the most.
+//!
+//! Why points on the segments only: a point inserted on a segment joins every triangle it
+//! creates, so each new triangle touches a segment and needs only the near-segment bounds
+//! (every angle in [30°, 120°], an input corner sharper than 30° taken whole); the interior
+//! triangles that remain are triangles of the hexagon dual, whose bounds (43.9°–90°, radius
+//! ratio, Delaunay) the insertion never touches. A free Steiner point (Ruppert's circumcentre)
+//! would make triangles without a segment corner that have to meet the interior bounds.
+//!
+//! Insertion is Bowyer–Watson in the constrained Delaunay triangulation (the triangles whose
+//! circumcircle holds the new point, reached without crossing a segment piece), so the mesh
+//! stays constrained Delaunay: every empty-circle violation lies on a segment.
+//!
+//! Termination: an insertion is made only when it lowers the measure (the number of bad
+//! triangles, then the sum of their excess over the bounds, lexicographically), and the
+//! number of insertions is capped by a budget; triangles no candidate repairs are returned to
+//! the driver, which subdivides the hexagons there and meshes again (`drive`).
+
+mod edit;
+
+use crate::geom::{angle_deg, circumcenter, dist, Point};
+use crate::hex::extended::check::breaks_bounds;
+use crate::quality::bounds::HEX;
+use crate::quality::rounding;
+use edit::Log;
+
+/// The smallest angle of a triangle touching a segment (Triangle's `-q30`), but at an input
+/// corner sharper than it taken whole.
+pub const NEAR_MIN_ANGLE: f64 = 30.0;
+
+/// The largest angle of a triangle touching a segment (180° − 2·30°).
+pub const NEAR_MAX_ANGLE: f64 = 120.0;
+
+const NONE: u32 = u32::MAX;
+
+/// How many of the bad triangles a first edit made a second edit may aim at (`repair`).
+const SECOND_TARGETS: usize = 3;
+
+/// What a triangle contributes to the measure.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+struct Cost {
+    /// Triangles that break their bounds.
+    bad: i64,
+    /// Their summed excess over the bounds, in degrees.
+    excess: f64,
+    /// Near-segment angles above 90° (the non-obtuse aim; a tie-breaker only).
+    obtuse: i64,
+}
+
+impl Cost {
+    fn add(&mut self, o: Cost) {
+        self.bad += o.bad;
+        self.excess += o.excess;
+        self.obtuse += o.obtuse;
+    }
+    fn sub(&mut self, o: Cost) {
+        self.bad -= o.bad;
+        self.excess -= o.excess;
+        self.obtuse -= o.obtuse;
+    }
+    /// True when this change of the measure is a strict improvement.
+    fn improves(&self) -> bool {
+        self.bad < 0 || (self.bad == 0 && self.excess < -1e-9)
+    }
+    /// Orders changes: fewer bad triangles, then less excess, then fewer obtuse angles.
+    fn better_than(&self, o: &Cost) -> bool {
+        if self.bad != o.bad {
+            return self.bad < o.bad;
+        }
+        if (self.excess - o.excess).abs() > 1e-9 {
+            return self.excess < o.excess;
+        }
+        self.obtuse < o.obtuse
+    }
+}
+
+/// An edit of the band.
+#[derive(Debug, Clone, Copy)]
+enum Op {
+    /// A point at parameter q of segment s, between its vertices u and v.
+    Insert { u: u32, v: u32, s: u32, q: f64 },
+    /// The vertex w removed (a point on a segment, or a dual vertex beside one).
+    Delete { w: u32 },
+    /// The point w on a segment moved to parameter q, between its neighbours u and v; or a
+    /// vertex w off the segments moved onto the piece uv of segment s (snapped), taking the
+    /// place of the point `also` on that piece when given.
+    Move {
+        w: u32,
+        also: Option<u32>,
+        u: u32,
+        v: u32,
+        s: u32,
+        q: f64,
+    },
+}
+
+/// A triangulation with neighbours, the segments each vertex lies on, and undoable edits.
+pub(super) struct Band<'a> {
+    segments: &'a [[Point; 2]],
+    /// Vertex positions.
+    pub verts: Vec<Point>,
+    /// The input segments each vertex lies on.
+    pub segs: Vec<Vec<u32>>,
+    /// For a vertex the band inserted, the vertex of the piece it split (its hexagon's owner).
+    pub origin: Vec<u32>,
+    /// Triangles, counter-clockwise.
+    pub tris: Vec<[u32; 3]>,
+    /// For each triangle, the neighbour across the edge opposite each corner.
+    nbr: Vec<[u32; 3]>,
+    /// False for triangles an edit removed.
+    pub alive: Vec<bool>,
+    /// One live triangle at each vertex.
+    vtri: Vec<u32>,
+    log: Option<Log>,
+    /// Vertices below this index are input points: they never move.
+    n_fixed: usize,
+    /// Triangles below this index are the ones the band was given.
+    n_given: usize,
+    /// The shortest edge an interior triangle may have (Sec. 6.3: √7/(12√3)·d_min).
+    min_edge: f64,
+    /// Points inserted.
+    pub inserted: u64,
+    /// Points removed from the segments.
+    pub deleted: u64,
+    /// Points moved along the segments.
+    pub moved: u64,
+    /// Edges flipped to make the triangulation constrained Delaunay.
+    pub flips: u64,
+}
+
+impl<'a> Band<'a> {
+    /// The triangulation of `tris` on `verts`, vertex v lying on the segments `segs[v]`.
+    pub fn new(
+        segments: &'a [[Point; 2]],
+        verts: Vec<Point>,
+        segs: Vec<Vec<u32>>,
+        tris: Vec<[u32; 3]>,
+        n_fixed: usize,
+    ) -> Band<'a> {
+        let mut by_edge: crate::hex::lattice::FxHashMap<(u32, u32), (u32, usize)> =
+            Default::default();
+        for (t, tri) in tris.iter().enumerate() {
+            for i in 0..3 {
+                by_edge.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), (t as u32, i));
+            }
+        }
+        let mut nbr = vec![[NONE; 3]; tris.len()];
+        let mut vtri = vec![NONE; verts.len()];
+        for (t, tri) in tris.iter().enumerate() {
+            for i in 0..3 {
+                let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                if let Some(&(o, _)) = by_edge.get(&(y, x)) {
+                    nbr[t][i] = o;
+                }
+                vtri[tri[i] as usize] = t as u32;
+            }
+        }
+        let n = verts.len();
+        let n_tris = tris.len();
+        Band {
+            segments,
+            verts,
+            segs,
+            origin: (0..n as u32).collect(),
+            alive: vec![true; tris.len()],
+            tris,
+            nbr,
+            vtri,
+            log: None,
+            n_fixed,
+            n_given: n_tris,
+            min_edge: 0.0,
+            inserted: 0,
+            deleted: 0,
+            moved: 0,
+            flips: 0,
+        }
+    }
+
+    /// This band with interior triangles held to a shortest edge of `min_edge`.
+    pub fn with_min_edge(mut self, min_edge: f64) -> Band<'a> {
+        self.min_edge = min_edge;
+        self
+    }
+
+    fn on_segment(&self, v: u32) -> bool {
+        !self.segs[v as usize].is_empty()
+    }
+
+    /// The segment the edge uv runs along, if any: both ends on it.
+    fn piece(&self, u: u32, v: u32) -> Option<u32> {
+        let su = &self.segs[u as usize];
+        self.segs[v as usize]
+            .iter()
+            .copied()
+            .find(|s| su.contains(s))
+    }
+
+    fn corners(&self, t: u32) -> [Point; 3] {
+        self.tris[t as usize].map(|v| self.verts[v as usize])
+    }
+
+    /// What triangle `t` adds to the measure (module docs).
+    fn cost(&self, t: u32) -> Cost {
+        let tri = self.tris[t as usize];
+        let c = self.corners(t);
+        if !tri.iter().any(|&v| self.on_segment(v)) {
+            // The shortest edge is held against the triangles the band makes; the dual's own
+            // are the self-check's (`drive`).
+            let short = t as usize >= self.n_given
+                && (0..3).any(|m| dist(c[m], c[(m + 1) % 3]) < self.min_edge);
+            if breaks_bounds(&c) || short {
+                let excess: f64 = (0..3)
+                    .map(|m| {
+                        let a = angle_deg(c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
+                        rounding::beyond(a, HEX.min_angle, HEX.max_angle)
+                    })
+                    .sum();
+                return Cost {
+                    bad: 1,
+                    excess: excess.max(1e-6),
+                    obtuse: 0,
+                };
+            }
+            return Cost::default();
+        }
+        let mut cost = Cost::default();
+        let mut bad = false;
+        for m in 0..3 {
+            let (a, b, d) = (c[m], c[(m + 1) % 3], c[(m + 2) % 3]);
+            let angle = angle_deg(a, b, d);
+            let whole = self.piece(tri[m], tri[(m + 1) % 3]).is_some()
+                && self.piece(tri[m], tri[(m + 2) % 3]).is_some();
+            let lo = if whole { 0.0 } else { NEAR_MIN_ANGLE };
+            let beyond = rounding::beyond(angle, lo, NEAR_MAX_ANGLE);
+            if beyond > HEX.self_check_slack + rounding::placement_allowance(a, b, d) {
+                bad = true;
+                cost.excess += beyond;
+            }
+            if angle > 90.0 + 1e-9 {
+                cost.obtuse += 1;
+            }
+        }
+        if bad {
+            cost.bad = 1;
+            cost.excess = cost.excess.max(1e-6);
+        }
+        cost
+    }
+
+    /// The segment pieces near triangle `t`: edges of the triangles around its corners.
+    fn pieces_near(&self, t: u32) -> Vec<(u32, u32, u32, u32)> {
+        let mut out: Vec<(u32, u32, u32, u32)> = Vec::new();
+        let mut seen: Vec<u32> = vec![t];
+        let mut tris = vec![t];
+        for &v in &self.tris[t as usize] {
+            for s in self.star(v) {
+                if !seen.contains(&s) {
+                    seen.push(s);
+                    tris.push(s);
+                }
+            }
+        }
+        for &s in &tris {
+            let tri = self.tris[s as usize];
+            for i in 0..3 {
+                let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
+                if let Some(seg) = self.piece(x, y) {
+                    let key = (x.min(y), x.max(y));
+                    if !out.iter().any(|o| (o.0, o.1) == key) {
+                        out.push((key.0, key.1, seg, s));
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Makes `op` inside an open edit; false when it cannot be made validly.
+    fn apply(&mut self, op: Op) -> bool {
+        match op {
+            Op::Insert { u, v, s, q } => match self.edge_triangle(u, v) {
+                Some(t) => self.insert_on_piece(t, u, v, s, q),
+                None => false,
+            },
+            Op::Delete { w } => self.delete_vertex(w),
+            Op::Move {
+                w,
+                also,
+                u,
+                v,
+                s,
+                q,
+            } => {
+                self.delete_vertex(w)
+                    && also.is_none_or(|x| self.delete_vertex(x))
+                    && match self.edge_triangle(u, v) {
+                        Some(t) => self.insert_on_piece(t, u, v, s, q),
+                        None => false,
+                    }
+            }
+        }
+    }
+
+    /// The parameters along segment `s` worth trying between the vertices u and v for a bad
+    /// triangle with corners `tri`: the middle, the feet of the corners and of the
+    /// circumcentre, and the points as far from u or v as a corner is.
+    fn params(&self, s: u32, u: u32, v: u32, tri: [u32; 3], targets: &[Point]) -> Vec<f64> {
+        let (tu, tv) = (
+            self.param(s, self.verts[u as usize]),
+            self.param(s, self.verts[v as usize]),
+        );
+        let (lo, hi) = (tu.min(tv), tu.max(tv));
+        let len = dist(self.verts[u as usize], self.verts[v as usize]);
+        if hi <= lo || hi.is_nan() || lo.is_nan() || len == 0.0 {
+            return Vec::new();
+        }
+        let mut params: Vec<f64> = vec![(lo + hi) / 2.0];
+        for &q in targets {
+            params.push(self.param(s, q));
+        }
+        for &e in &[u, v] {
+            let te = self.param(s, self.verts[e as usize]);
+            let dir = if te == lo { 1.0 } else { -1.0 };
+            for &x in &tri {
+                if x == e {
+                    continue;
+                }
+                let d = dist(self.verts[e as usize], self.verts[x as usize]);
+                params.push(te + dir * (hi - lo) * d / len);
+            }
+        }
+        let margin = (hi - lo) * 1e-6;
+        params.retain(|&q| q > lo + margin && q < hi - margin);
+        params
+    }
+
+    /// The two vertices next to `w` along its segment.
+    fn along(&self, w: u32) -> Option<(u32, u32)> {
+        let s = *self.segs[w as usize].first()?;
+        let mut ends: Vec<u32> = Vec::new();
+        for t in self.star(w) {
+            for &x in &self.tris[t as usize] {
+                if x != w && self.segs[x as usize].contains(&s) && !ends.contains(&x) {
+                    ends.push(x);
+                }
+            }
+        }
+        (ends.len() == 2).then(|| (ends[0], ends[1]))
+    }
+
+    /// The edits worth trying for bad triangle `t`.
+    fn ops(&self, t: u32) -> Vec<Op> {
+        let tri = self.tris[t as usize];
+        let c = self.corners(t);
+        let mut targets: Vec<Point> = c.to_vec();
+        if let Some(cc) = circumcenter(c[0], c[1], c[2]) {
+            targets.push(cc);
+        }
+        let mut ops = Vec::new();
+        let pieces = self.pieces_near(t);
+        for &(u, v, s, _) in &pieces {
+            for q in self.params(s, u, v, tri, &targets) {
+                ops.push(Op::Insert { u, v, s, q });
+            }
+        }
+        let mut movable: Vec<u32> = Vec::new();
+        for &(u, v, _, _) in &pieces {
+            for x in [u, v] {
+                if (x as usize) >= self.n_fixed
+                    && self.segs[x as usize].len() == 1
+                    && !movable.contains(&x)
+                {
+                    movable.push(x);
+                }
+            }
+        }
+        for &w in &tri {
+            if (w as usize) < self.n_fixed || self.on_segment(w) {
+                continue;
+            }
+            ops.push(Op::Delete { w });
+            for &(u, v, s, _) in &pieces {
+                if u == w || v == w {
+                    continue;
+                }
+                let q = self.param(s, self.verts[w as usize]);
+                let (tu, tv) = (
+                    self.param(s, self.verts[u as usize]),
+                    self.param(s, self.verts[v as usize]),
+                );
+                let (lo, hi) = (tu.min(tv), tu.max(tv));
+                let margin = (hi - lo) * 1e-6;
+                if q > lo + margin && q < hi - margin {
+                    ops.push(Op::Move {
+                        w,
+                        also: None,
+                        u,
+                        v,
+                        s,
+                        q,
+                    });
+                }
+            }
+            // Snapped in place of a point already on the segment beside it.
+            for &x in &movable {
+                let Some((u, v)) = self.along(x) else {
+                    continue;
+                };
+                let s = self.segs[x as usize][0];
+                let q = self.param(s, self.verts[w as usize]);
+                let (tu, tv) = (
+                    self.param(s, self.verts[u as usize]),
+                    self.param(s, self.verts[v as usize]),
+                );
+                let (lo, hi) = (tu.min(tv), tu.max(tv));
+                let margin = (hi - lo) * 1e-6;
+                if q > lo + margin && q < hi - margin {
+                    ops.push(Op::Move {
+                        w,
+                        also: Some(x),
+                        u,
+                        v,
+                        s,
+                        q,
+                    });
+                }
+            }
+        }
+        for w in movable {
+            ops.push(Op::Delete { w });
+            let Some((u, v)) = self.along(w) else {
+                continue;
+            };
+            let s = self.segs[w as usize][0];
+            for q in self.params(s, u, v, tri, &targets) {
+                ops.push(Op::Move {
+                    w,
+                    also: None,
+                    u,
+                    v,
+                    s,
+                    q,
+                });
+            }
+        }
+        ops
+    }
+
+    /// The bad triangles the open edit made, worst first (at most `n`).
+    fn worst_made(&self, n: usize) -> Vec<u32> {
+        let Some(log) = self.log.as_ref() else {
+            return Vec::new();
+        };
+        let mut made: Vec<(f64, u32)> = (log.tris_len..self.tris.len())
+            .map(|t| t as u32)
+            .filter(|&t| self.alive[t as usize])
+            .filter_map(|t| {
+                let c = self.cost(t);
+                (c.bad > 0).then_some((c.excess, t))
+            })
+            .collect();
+        made.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+        made.into_iter().take(n).map(|(_, t)| t).collect()
+    }
+
+    /// The edit near triangle `t` that improves the measure most, made: one edit, or when no
+    /// single one improves, a pair of them (the second repairing the worst triangle the
+    /// first made, or `t` itself if it survived).
+    fn repair(&mut self, t: u32) -> bool {
+        let mut best: Option<(Cost, Op, Option<Op>)> = None;
+        let ops = self.ops(t);
+        for &op in &ops {
+            self.begin();
+            if self.apply(op) {
+                let cost = self.edit_cost();
+                if cost.improves() && best.as_ref().is_none_or(|b| cost.better_than(&b.0)) {
+                    best = Some((cost, op, None));
+                }
+            }
+            self.rollback();
+        }
+        if best.is_none() {
+            for &op in &ops {
+                self.begin();
+                if !self.apply(op) {
+                    self.rollback();
+                    continue;
+                }
+                let mut next = self.worst_made(SECOND_TARGETS);
+                if self.alive[t as usize] {
+                    next.insert(0, t);
+                }
+                let mut second: Vec<Op> = Vec::new();
+                for n in next {
+                    second.extend(self.ops(n));
+                }
+                self.rollback();
+                for &op2 in &second {
+                    self.begin();
+                    if self.apply(op) && self.apply(op2) {
+                        let cost = self.edit_cost();
+                        if cost.improves() && best.as_ref().is_none_or(|b| cost.better_than(&b.0)) {
+                            best = Some((cost, op, Some(op2)));
+                        }
+                    }
+                    self.rollback();
+                }
+            }
+        }
+        let Some((_, op, op2)) = best else {
+            return false;
+        };
+        self.begin();
+        let made = self.apply(op) && op2.is_none_or(|o| self.apply(o));
+        if made {
+            self.log = None;
+            for o in std::iter::once(op).chain(op2) {
+                match o {
+                    Op::Insert { .. } => self.inserted += 1,
+                    Op::Delete { .. } => self.deleted += 1,
+                    Op::Move { .. } => self.moved += 1,
+                }
+            }
+        } else {
+            self.rollback();
+        }
+        made
+    }
+
+    /// Repairs bad triangles by insertions until none is left, none can be repaired, or
+    /// `budget` insertions are made; returns the bad triangles left.
+    pub fn improve(&mut self, budget: u64) -> Vec<u32> {
+        let mut made = 0u64;
+        loop {
+            let mut bad: Vec<(f64, u32)> = (0..self.tris.len() as u32)
+                .filter(|&t| self.alive[t as usize])
+                .filter_map(|t| {
+                    let c = self.cost(t);
+                    (c.bad > 0).then_some((c.excess, t))
+                })
+                .collect();
+            if bad.is_empty() {
+                return Vec::new();
+            }
+            bad.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+            let mut progressed = false;
+            for &(_, t) in &bad {
+                if made >= budget {
+                    break;
+                }
+                if !self.alive[t as usize] || self.cost(t).bad == 0 {
+                    continue;
+                }
+                if self.repair(t) {
+                    made += 1;
+                    progressed = true;
+                }
+            }
+            if !progressed || made >= budget {
+                return (0..self.tris.len() as u32)
+                    .filter(|&t| self.alive[t as usize] && self.cost(t).bad > 0)
+                    .collect();
+            }
+        }
+    }
+}

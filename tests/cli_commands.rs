@@ -474,3 +474,26 @@ fn a_closed_output_pipe_ends_the_command_without_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_ne!(out.status.code(), Some(101), "{stderr}");
 }
+
+/// On a domain, hex's summary does not claim its interior angles for the whole mesh: it says
+/// where they hold and states the near-segment figures apart, as measured; on a point set
+/// there is no such line.
+#[test]
+fn the_hex_summary_states_near_segment_figures_apart_on_a_domain() {
+    let prefix = temp("imr-hex-summary");
+    let p = prefix.to_str().expect("utf-8");
+    let out = hexmesh(&["mesh", "datasets/imr.poly", "--mesher", "hex", "-o", p]);
+    assert!(out.status.success(), "{}", text(&out));
+    let shown = String::from_utf8_lossy(&out.stderr).to_string();
+    assert!(
+        shown.contains("its bounds hold away from the segments")
+            && shown.contains("triangles touching a segment have angles")
+            && shown.contains("(measured, not promised)"),
+        "{shown}"
+    );
+    let prefix = temp("plane-100-hex-summary");
+    let p = prefix.to_str().expect("utf-8");
+    let out = hexmesh(&["mesh", "plane-100", "--mesher", "hex", "-o", p]);
+    assert!(out.status.success(), "{}", text(&out));
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("touching a segment"));
+}

@@ -330,7 +330,7 @@ pub fn metrics_split(mesh: &TriMesh, input: &Pslg, band: f64) -> SplitMetrics {
 /// check's 2^-40 of the segments' coordinate scale (`validate`). A mesher that splits a
 /// segment at a constructed point can only round it onto the line; the triangles at such a
 /// point touch the segment, and count as near-segment triangles, not as interior ones.
-pub(crate) fn on_segment_tolerance(input: &Pslg) -> f64 {
+pub fn on_segment_tolerance(input: &Pslg) -> f64 {
     let scale = input
         .segments
         .iter()

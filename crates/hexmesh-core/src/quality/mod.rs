@@ -24,8 +24,8 @@ pub use bounds::{
 pub use closest_pair::{closest_pair, ClosestPair};
 pub use descent::{descent, Descent};
 pub use metrics::{
-    metrics, metrics_split, triangle_shape, DelaunayEdge, Metrics, SplitMetrics, TriangleShape,
-    Worst, DELAUNAY_ANGLE_SLACK_DEG,
+    metrics, metrics_split, on_segment_tolerance, triangle_shape, DelaunayEdge, Metrics,
+    SplitMetrics, TriangleShape, Worst, DELAUNAY_ANGLE_SLACK_DEG,
 };
 pub use validate::{triangle_regions, validate, Numbering, ValidateOptions, Violation};
 

@@ -13,6 +13,10 @@ pub(super) struct Log {
     pub(super) killed: Vec<u32>,
     pub(super) nbr: Vec<(u32, usize, u32)>,
     pub(super) vtri: Vec<(u32, u32)>,
+    /// The measure of the triangles the edit removed that existed before it.
+    pub(super) killed_cost: Cost,
+    /// Vertices the edit moved, with their old position and segments.
+    pub(super) moved: Vec<(u32, Point, Vec<u32>)>,
 }
 
 impl Band<'_> {
@@ -40,6 +44,10 @@ impl Band<'_> {
 
     pub(super) fn rollback(&mut self) {
         let Some(log) = self.log.take() else { return };
+        for (v, p, segs) in log.moved.into_iter().rev() {
+            self.verts[v as usize] = p;
+            self.segs[v as usize] = segs;
+        }
         for &(t, i, old) in log.nbr.iter().rev() {
             self.nbr[t as usize][i] = old;
         }
@@ -58,18 +66,19 @@ impl Band<'_> {
         self.vtri.truncate(log.verts_len);
     }
 
-    /// The change of the measure the open edit made.
+    /// The change of the measure the open edit made: its live new triangles less what the
+    /// triangles it removed measured when they were removed.
     pub(super) fn edit_cost(&self) -> Cost {
         let Some(log) = &self.log else {
             return Cost::default();
         };
         let mut c = Cost::default();
         for t in log.tris_len..self.tris.len() {
-            c.add(self.cost(t as u32));
+            if self.alive[t] {
+                c.add(self.cost(t as u32));
+            }
         }
-        for &t in &log.killed {
-            c.sub(self.cost(t));
-        }
+        c.sub(log.killed_cost);
         c
     }
 
@@ -169,6 +178,17 @@ impl Band<'_> {
     /// Replaces the live triangles `killed` by `made` (which must tile the same region),
     /// inside an open edit: neighbours across the region's boundary are kept.
     pub(super) fn replace(&mut self, killed: &[u32], made: &[[u32; 3]]) {
+        self.replace_with(killed, |_| {}, made);
+    }
+
+    /// `replace`, running `between` after the removal and before the new triangles are made
+    /// (a vertex moved there is seen at its new place by them, at its old by the removed).
+    pub(super) fn replace_with(
+        &mut self,
+        killed: &[u32],
+        between: impl FnOnce(&mut Self),
+        made: &[[u32; 3]],
+    ) {
         let mut outer: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
         for &t in killed {
             let tri = self.tris[t as usize];
@@ -181,11 +201,16 @@ impl Band<'_> {
             }
         }
         for &t in killed {
+            let c = self.cost(t);
             self.alive[t as usize] = false;
             if let Some(log) = &mut self.log {
+                if (t as usize) < log.tris_len {
+                    log.killed_cost.add(c);
+                }
                 log.killed.push(t);
             }
         }
+        between(self);
         let first = self.tris.len() as u32;
         let mut inner: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
         for (k, &tri) in made.iter().enumerate() {
@@ -215,6 +240,124 @@ impl Band<'_> {
                 self.set_vtri(v, t);
             }
         }
+        // An outer edge no new triangle took is now on the mesh's boundary.
+        for (&(x, y), &n) in &outer {
+            if n != NONE && !inner.contains_key(&(x, y)) {
+                if let Some(sl) = self.slot(n, y, x) {
+                    if self.nbr[n as usize][sl] != NONE
+                        && !self.alive[self.nbr[n as usize][sl] as usize]
+                    {
+                        self.set_nbr(n, sl, NONE);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Moves vertex `w` (off the segments, not an input point) onto the piece uv of segment
+    /// `s` at parameter `q`, where uv is the edge opposite `w` in one of its triangles (paper
+    /// 001 Sec. 5.1 moves lattice corners onto the boundary the same way): that triangle
+    /// goes, the one beyond the piece is split at `w`, the others keep their corners, and
+    /// Lawson flips restore the constrained Delaunay property. Inside an open edit; false
+    /// when a triangle would turn over or the flips do not settle.
+    pub(super) fn snap(&mut self, w: u32, u: u32, v: u32, s: u32, q: f64) -> bool {
+        if (w as usize) < self.n_fixed || !self.segs[w as usize].is_empty() {
+            return false;
+        }
+        let foot = self.at(s, q);
+        let (star, _) = self.star_ccw(w);
+        let Some(&t0) = star.iter().find(|&&t| {
+            let tri = self.tris[t as usize];
+            tri.contains(&u) && tri.contains(&v)
+        }) else {
+            return false;
+        };
+        let tri0 = self.tris[t0 as usize];
+        let m = (0..3).find(|&k| tri0[k] == w).unwrap_or(0);
+        let (a, b) = (tri0[(m + 1) % 3], tri0[(m + 2) % 3]);
+        let t1 = self.nbr[t0 as usize][m];
+        let pos = |x: u32| if x == w { foot } else { self.verts[x as usize] };
+        let mut made: Vec<[u32; 3]> = star
+            .iter()
+            .filter(|&&t| t != t0)
+            .map(|&t| self.tris[t as usize])
+            .collect();
+        let mut killed = star.clone();
+        if t1 != NONE {
+            let o = self.tris[t1 as usize];
+            let Some(k) = (0..3).find(|&k| o[k] != a && o[k] != b) else {
+                return false;
+            };
+            let c = o[k];
+            made.push([b, w, c]);
+            made.push([w, a, c]);
+            killed.push(t1);
+        }
+        if made
+            .iter()
+            .any(|t| orient2d(pos(t[0]), pos(t[1]), pos(t[2])) <= 0.0)
+        {
+            return false;
+        }
+        let first = self.tris.len() as u32;
+        self.replace_with(
+            &killed,
+            |band| {
+                if let Some(log) = &mut band.log {
+                    log.moved
+                        .push((w, band.verts[w as usize], band.segs[w as usize].clone()));
+                }
+                band.verts[w as usize] = foot;
+                band.segs[w as usize] = vec![s];
+            },
+            &made,
+        );
+        self.legalize((first..self.tris.len() as u32).collect())
+    }
+
+    /// Lawson flips, recorded in the open edit, from the triangles `stack` until every edge
+    /// that is not a segment piece passes the exact empty-circle test; false when more than
+    /// `MAX_FLIPS` would be needed.
+    fn legalize(&mut self, mut stack: Vec<u32>) -> bool {
+        const MAX_FLIPS: usize = 256;
+        let mut flips = 0;
+        while let Some(t) = stack.pop() {
+            if !self.alive[t as usize] {
+                continue;
+            }
+            for i in 0..3 {
+                let o = self.nbr[t as usize][i];
+                if o == NONE || !self.alive[o as usize] {
+                    continue;
+                }
+                let tri = self.tris[t as usize];
+                let (x, y, w) = (tri[(i + 1) % 3], tri[(i + 2) % 3], tri[i]);
+                if self.piece(x, y).is_some() {
+                    continue;
+                }
+                let Some(j) = self.slot(o, y, x) else {
+                    continue;
+                };
+                let d = self.tris[o as usize][j];
+                let p = |v: u32| self.verts[v as usize];
+                if incircle(p(w), p(x), p(y), p(d)) <= 0.0
+                    || orient2d(p(w), p(x), p(d)) <= 0.0
+                    || orient2d(p(w), p(d), p(y)) <= 0.0
+                {
+                    continue;
+                }
+                flips += 1;
+                if flips > MAX_FLIPS {
+                    return false;
+                }
+                let first = self.tris.len() as u32;
+                self.replace(&[t, o], &[[w, x, d], [w, d, y]]);
+                stack.push(first);
+                stack.push(first + 1);
+                break;
+            }
+        }
+        true
     }
 
     /// Inserts the point at parameter `param` of segment `s` into the piece uv (an edge of

@@ -84,6 +84,16 @@ enum Op {
     Insert { u: u32, v: u32, s: u32, q: f64 },
     /// The vertex w removed (a point on a segment, or a dual vertex beside one).
     Delete { w: u32 },
+    /// The dual vertex w moved onto the piece uv of segment s at parameter q, after the
+    /// point `also` on that segment is removed when given (`edit::snap`).
+    Snap {
+        w: u32,
+        also: Option<u32>,
+        u: u32,
+        v: u32,
+        s: u32,
+        q: f64,
+    },
     /// The point w on a segment moved to parameter q, between its neighbours u and v; or a
     /// vertex w off the segments moved onto the piece uv of segment s (snapped), taking the
     /// place of the point `also` on that piece when given.
@@ -287,6 +297,14 @@ impl<'a> Band<'a> {
                 None => false,
             },
             Op::Delete { w } => self.delete_vertex(w),
+            Op::Snap {
+                w,
+                also,
+                u,
+                v,
+                s,
+                q,
+            } => also.is_none_or(|x| self.delete_vertex(x)) && self.snap(w, u, v, s, q),
             Op::Move {
                 w,
                 also,
@@ -403,6 +421,14 @@ impl<'a> Band<'a> {
                         s,
                         q,
                     });
+                    ops.push(Op::Snap {
+                        w,
+                        also: None,
+                        u,
+                        v,
+                        s,
+                        q,
+                    });
                 }
             }
             // Snapped in place of a point already on the segment beside it.
@@ -420,6 +446,14 @@ impl<'a> Band<'a> {
                 let margin = (hi - lo) * 1e-6;
                 if q > lo + margin && q < hi - margin {
                     ops.push(Op::Move {
+                        w,
+                        also: Some(x),
+                        u,
+                        v,
+                        s,
+                        q,
+                    });
+                    ops.push(Op::Snap {
                         w,
                         also: Some(x),
                         u,
@@ -522,7 +556,7 @@ impl<'a> Band<'a> {
                 match o {
                     Op::Insert { .. } => self.inserted += 1,
                     Op::Delete { .. } => self.deleted += 1,
-                    Op::Move { .. } => self.moved += 1,
+                    Op::Move { .. } | Op::Snap { .. } => self.moved += 1,
                 }
             }
         } else {

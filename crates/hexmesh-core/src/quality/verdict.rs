@@ -424,9 +424,20 @@ fn area_check(mesh: &TriMesh, input: Option<&Pslg>, max_area: Option<f64>) -> Ch
             worst = Some((ratio, t));
         }
     }
+    let note = match (max_area, input.is_some()) {
+        (Some(a), true) => format!("--max-area {a} and the input's regional limits"),
+        (Some(a), false) => format!("--max-area {a}"),
+        (None, _) => "the input's regional limits".to_string(),
+    };
+    ratio_check(mesh, "triangle area / its limit", worst, note)
+}
+
+/// The row of a size limit: `worst` is the largest figure over its limit and the triangle it
+/// belongs to; it fails beyond 1 + 2^-40 (`AREA_SLACK`).
+fn ratio_check(mesh: &TriMesh, what: &str, worst: Option<(f64, usize)>, note: String) -> Check {
     let failed = worst.is_some_and(|(w, _)| w > 1.0 + AREA_SLACK);
     Check {
-        what: "triangle area / its limit".to_string(),
+        what: what.to_string(),
         value: worst.map(|(w, _)| w),
         relation: "≤".to_string(),
         limit: 1.0,
@@ -437,13 +448,7 @@ fn area_check(mesh: &TriMesh, input: Option<&Pslg>, max_area: Option<f64>) -> Ch
             value: w,
         }),
         rounding: None,
-        note: Some(
-            match (max_area, input.is_some()) {
-                (Some(a), true) => format!("--max-area {a} and the input's regional limits"),
-                (Some(a), false) => format!("--max-area {a}"),
-                (None, _) => "the input's regional limits".to_string(),
-            } + "; up to 1 + 2^-40",
-        ),
+        note: Some(note + "; up to 1 + 2^-40"),
     }
 }
 
@@ -463,21 +468,12 @@ fn edge_check(mesh: &TriMesh, limit: f64) -> Check {
             }
         }
     }
-    let failed = worst.is_some_and(|(w, _)| w > 1.0 + AREA_SLACK);
-    Check {
-        what: "longest edge / its limit".to_string(),
-        value: worst.map(|(w, _)| w),
-        relation: "≤".to_string(),
-        limit: 1.0,
-        status: if failed { Status::Fail } else { Status::Ok },
-        worst: worst.filter(|_| failed).map(|(w, t)| WorstTriangle {
-            triangle: t,
-            corners: mesh.corners(t),
-            value: w,
-        }),
-        rounding: None,
-        note: Some(format!("--max-edge {limit}; up to 1 + 2^-40")),
-    }
+    ratio_check(
+        mesh,
+        "longest edge / its limit",
+        worst,
+        format!("--max-edge {limit}"),
+    )
 }
 
 fn number(v: Option<f64>) -> String {

@@ -10,8 +10,8 @@ use crate::mesh::Pslg;
 
 /// Which triangles lie in the domain (Triangle's .poly semantics without -c): triangles
 /// reached from the mesh's outer boundary, or from a hole seed, without crossing a segment
-/// edge are outside. When the outer flood reaches every triangle the segments enclose nothing,
-/// and the domain is the bounding hexagon (minus the holes).
+/// edge are outside. Segments that enclose nothing are refused before meshing
+/// (`Pslg::check`), so an outer flood that reaches every triangle is an internal error.
 pub(super) fn carve(
     vertices: &[Point],
     triangles: &[[u32; 3]],
@@ -54,9 +54,13 @@ pub(super) fn carve(
             })
         })
         .collect();
-    let mut outside = flood(outer_seeds);
+    let outside = flood(outer_seeds);
     if outside.iter().all(|&o| o) {
-        outside.iter_mut().for_each(|o| *o = false);
+        return Err(Error::mesher(
+            NAME,
+            "internal error: the segments enclose no triangle of the mesh, although the input \
+             check found a region they enclose",
+        ));
     }
     let contains = |t: usize, p: Point| {
         let [a, b, c] = triangles[t].map(|v| vertices[v as usize]);

@@ -61,7 +61,7 @@
 //! no empty-circle violation, radius ratio ≤ 1.20787, shortest interior edge ≥ 0.127·d_min.
 //! With `verdict`'s exact band the interior of imr shows 23.2°–120° at triangles beside rounded
 //! projected centres (above); on axis-parallel PSLGs `verdict` with the hex bounds passes.
-//! Squares with holes, nested boundaries, slits, open polylines, wedges down to 5°, 40 short
+//! Squares with holes, nested boundaries, slits, wedges down to 5°, 40 short
 //! segments beside long ones and random star polygons with star holes mesh valid and
 //! conforming; crossing segments and points outside the domain are refused.
 
@@ -85,7 +85,7 @@ use crate::hex::lattice::{Key, KeySet};
 use crate::hex::refine::refine_simple;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
-use crate::mesher::Params;
+use crate::mesher::{Params, StopReason};
 
 use drive::{drive, Fail};
 use rules::apply_rules;
@@ -171,6 +171,7 @@ pub fn mesh_pslg(input: &Pslg, params: &Params) -> Result<PslgRun> {
             on_segment,
             stats,
         }),
+        Err(Fail::Stop(Stop::Budget(StopReason::Stalled(why)))) => Err(Error::mesher(NAME, why)),
         Err(Fail::Stop(Stop::Budget(why))) => Err(Error::mesher(
             NAME,
             format!("stopped by the {why} before the segments could be inserted"),
@@ -194,6 +195,7 @@ pub fn refine_pslg(input: &Pslg, params: &Params) -> Result<(Hierarchy, Option<S
     });
     match outcome {
         Ok(()) => Ok((h, None)),
+        Err(Stop::Budget(StopReason::Stalled(why))) => Err(Error::mesher(NAME, why)),
         Err(Stop::Budget(why)) => Ok((h, Some(format!("stopped by the {why}")))),
         Err(Stop::Precision(problem)) => Err(Error::input(problem)),
     }

@@ -88,6 +88,30 @@ impl Band<'_> {
         (0..3).find(|&i| tri[(i + 1) % 3] == x && tri[(i + 2) % 3] == y)
     }
 
+    /// The first edge of live triangle `t` that is not a segment piece, fails the exact
+    /// empty-circle test against the triangle beyond it, and can be flipped (the
+    /// quadrilateral is convex): its slot in `t`, the triangle beyond and that one's slot.
+    fn illegal_edge(&self, t: u32) -> Option<(usize, u32, usize)> {
+        (0..3).find_map(|i| {
+            let o = self.nbr[t as usize][i];
+            if o == NONE || !self.alive[o as usize] {
+                return None;
+            }
+            let tri = self.tris[t as usize];
+            let (x, y, w) = (tri[(i + 1) % 3], tri[(i + 2) % 3], tri[i]);
+            if self.piece(x, y).is_some() {
+                return None;
+            }
+            let j = self.slot(o, y, x)?;
+            let d = self.tris[o as usize][j];
+            let p = |v: u32| self.verts[v as usize];
+            let flippable = incircle(p(w), p(x), p(y), p(d)) > 0.0
+                && orient2d(p(w), p(x), p(d)) > 0.0
+                && orient2d(p(w), p(d), p(y)) > 0.0;
+            flippable.then_some((i, o, j))
+        })
+    }
+
     /// Lawson flips of every edge that is not a segment piece and fails the exact
     /// empty-circle test, until none does: the constrained Delaunay triangulation.
     pub(in super::super) fn make_delaunay(&mut self) {
@@ -97,33 +121,11 @@ impl Band<'_> {
             if !self.alive[t as usize] {
                 continue;
             }
-            for i in 0..3 {
-                let o = self.nbr[t as usize][i];
-                if o == NONE {
-                    continue;
-                }
-                let tri = self.tris[t as usize];
-                let (x, y, w) = (tri[(i + 1) % 3], tri[(i + 2) % 3], tri[i]);
-                if self.piece(x, y).is_some() {
-                    continue;
-                }
-                let Some(j) = self.slot(o, y, x) else {
-                    continue;
-                };
-                let d = self.tris[o as usize][j];
-                let p = |v: u32| self.verts[v as usize];
-                if incircle(p(w), p(x), p(y), p(d)) <= 0.0 {
-                    continue;
-                }
-                // The quadrilateral w x d y is convex when the circle test fails.
-                if orient2d(p(w), p(x), p(d)) <= 0.0 || orient2d(p(w), p(d), p(y)) <= 0.0 {
-                    continue;
-                }
+            if let Some((i, o, j)) = self.illegal_edge(t) {
                 self.flip(t, i, o, j);
                 self.flips += 1;
                 stack.push(t);
                 stack.push(o);
-                break;
             }
         }
     }
@@ -325,37 +327,20 @@ impl Band<'_> {
             if !self.alive[t as usize] {
                 continue;
             }
-            for i in 0..3 {
-                let o = self.nbr[t as usize][i];
-                if o == NONE || !self.alive[o as usize] {
-                    continue;
-                }
-                let tri = self.tris[t as usize];
-                let (x, y, w) = (tri[(i + 1) % 3], tri[(i + 2) % 3], tri[i]);
-                if self.piece(x, y).is_some() {
-                    continue;
-                }
-                let Some(j) = self.slot(o, y, x) else {
-                    continue;
-                };
-                let d = self.tris[o as usize][j];
-                let p = |v: u32| self.verts[v as usize];
-                if incircle(p(w), p(x), p(y), p(d)) <= 0.0
-                    || orient2d(p(w), p(x), p(d)) <= 0.0
-                    || orient2d(p(w), p(d), p(y)) <= 0.0
-                {
-                    continue;
-                }
-                flips += 1;
-                if flips > MAX_FLIPS {
-                    return false;
-                }
-                let first = self.tris.len() as u32;
-                self.replace(&[t, o], &[[w, x, d], [w, d, y]]);
-                stack.push(first);
-                stack.push(first + 1);
-                break;
+            let Some((i, o, j)) = self.illegal_edge(t) else {
+                continue;
+            };
+            flips += 1;
+            if flips > MAX_FLIPS {
+                return false;
             }
+            let tri = self.tris[t as usize];
+            let (w, x, y) = (tri[i], tri[(i + 1) % 3], tri[(i + 2) % 3]);
+            let d = self.tris[o as usize][j];
+            let first = self.tris.len() as u32;
+            self.replace(&[t, o], &[[w, x, d], [w, d, y]]);
+            stack.push(first);
+            stack.push(first + 1);
         }
         true
     }

@@ -356,6 +356,18 @@ impl<'a> Band<'a> {
         params
     }
 
+    /// True when parameter `q` of segment `s` lies strictly between its vertices u and v,
+    /// clear of both by a millionth of the piece.
+    fn strictly_between(&self, s: u32, u: u32, v: u32, q: f64) -> bool {
+        let (tu, tv) = (
+            self.param(s, self.verts[u as usize]),
+            self.param(s, self.verts[v as usize]),
+        );
+        let (lo, hi) = (tu.min(tv), tu.max(tv));
+        let margin = (hi - lo) * 1e-6;
+        q > lo + margin && q < hi - margin
+    }
+
     /// The two vertices next to `w` along its segment.
     fn along(&self, w: u32) -> Option<(u32, u32)> {
         let s = *self.segs[w as usize].first()?;
@@ -406,13 +418,7 @@ impl<'a> Band<'a> {
                     continue;
                 }
                 let q = self.param(s, self.verts[w as usize]);
-                let (tu, tv) = (
-                    self.param(s, self.verts[u as usize]),
-                    self.param(s, self.verts[v as usize]),
-                );
-                let (lo, hi) = (tu.min(tv), tu.max(tv));
-                let margin = (hi - lo) * 1e-6;
-                if q > lo + margin && q < hi - margin {
+                if self.strictly_between(s, u, v, q) {
                     ops.push(Op::Move {
                         w,
                         also: None,
@@ -438,13 +444,7 @@ impl<'a> Band<'a> {
                 };
                 let s = self.segs[x as usize][0];
                 let q = self.param(s, self.verts[w as usize]);
-                let (tu, tv) = (
-                    self.param(s, self.verts[u as usize]),
-                    self.param(s, self.verts[v as usize]),
-                );
-                let (lo, hi) = (tu.min(tv), tu.max(tv));
-                let margin = (hi - lo) * 1e-6;
-                if q > lo + margin && q < hi - margin {
+                if self.strictly_between(s, u, v, q) {
                     ops.push(Op::Move {
                         w,
                         also: Some(x),

@@ -6,6 +6,11 @@
 //! fail, the coarsest hexagon of the offending triangle is subdivided and everything runs
 //! again, at most `MAX_ROUNDS` times and while the hexagons grow less than `MAX_GROWTH`-fold;
 //! when validity fails or the rounds run out, the mesher returns an error naming the place.
+//!
+//! Near-segment triangles the band (`band`) could not repair are subdivided around in the
+//! same way for up to `NEAR_ROUNDS` rounds; the mesh and hierarchy from before those rounds
+//! are kept (`fallback`) and returned when the finer lattice breaks an interior bound or the
+//! Sec. 6.3 shortest edge, or grows beyond `MAX_GROWTH`.
 
 use super::cavity::{insert_segments, Built};
 use super::rules::{apply, apply_rules};

@@ -78,34 +78,12 @@ fn triangle_at_44_degrees_is_cut_off_at_the_timeout() {
 #[test]
 fn an_error_in_the_child_is_forwarded_with_its_message() {
     // A hole seed on the diagonal of a square inside a square, a segment: spade refuses the
-    // ambiguous seed in the child (the input itself passes `Pslg::check`: the seed empties
-    // one half of the inner square, which the ring around it borders).
-    let input = Pslg {
-        points: vec![
-            [0.0, 0.0],
-            [1.0, 0.0],
-            [1.0, 1.0],
-            [0.0, 1.0],
-            [-1.0, -1.0],
-            [2.0, -1.0],
-            [2.0, 2.0],
-            [-1.0, 2.0],
-        ],
-        segments: vec![
-            [0, 1],
-            [1, 2],
-            [2, 3],
-            [3, 0],
-            [0, 2],
-            [4, 5],
-            [5, 6],
-            [6, 7],
-            [7, 4],
-        ],
-        holes: vec![[0.5, 0.5]],
-        hexagon: None,
-        ..Pslg::default()
-    };
+    // ambiguous seed in the child (the fixture's header says why the input passes the check).
+    let input = hexmesh::io::read_input(
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/fixtures/refs/hole_seed_on_inner_diagonal.poly"),
+    )
+    .expect("fixture");
     let err = run_isolated(
         exe(),
         "spade",

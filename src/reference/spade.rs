@@ -499,32 +499,11 @@ mod tests {
     fn a_hole_seed_on_a_segment_is_refused() {
         // On the diagonal of a square inside a square (a seed on the boundary would empty
         // the domain, which `Pslg::check` refuses before spade sees the seed).
-        let input = Pslg {
-            points: vec![
-                [0.0, 0.0],
-                [1.0, 0.0],
-                [1.0, 1.0],
-                [0.0, 1.0],
-                [-1.0, -1.0],
-                [2.0, -1.0],
-                [2.0, 2.0],
-                [-1.0, 2.0],
-            ],
-            segments: vec![
-                [0, 1],
-                [1, 2],
-                [2, 3],
-                [3, 0],
-                [0, 2],
-                [4, 5],
-                [5, 6],
-                [6, 7],
-                [7, 4],
-            ],
-            holes: vec![[0.5, 0.5]],
-            hexagon: None,
-            ..Pslg::default()
-        };
+        let input = crate::io::read_input(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("tests/fixtures/refs/hole_seed_on_inner_diagonal.poly"),
+        )
+        .expect("fixture");
         let err = SpadeMesher.mesh(&input, &Params::default()).unwrap_err();
         assert!(err.to_string().contains("hole 0"), "{err}");
     }

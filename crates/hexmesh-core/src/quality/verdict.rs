@@ -252,17 +252,20 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         // (`Mesher::promise` drops it for `--max-area`/`--max-edge`, which it sees).
         let sized = b.region_area_limits && input.is_some_and(Pslg::has_area_limits);
         if let Some(limit) = b.min_edge_over_dmin {
+            let skipped = |note: &str| Check {
+                what: "shortest edge / d_min".to_string(),
+                value: None,
+                relation: "≥".to_string(),
+                limit,
+                status: Status::Skipped,
+                worst: None,
+                rounding: None,
+                note: Some(note.to_string()),
+            };
             match (m.shortest_edge, m.d_min) {
-                _ if sized => checks.push(Check {
-                    what: "shortest edge / d_min".to_string(),
-                    value: None,
-                    relation: "≥".to_string(),
-                    limit,
-                    status: Status::Skipped,
-                    worst: None,
-                    rounding: None,
-                    note: Some("the input's regional area limits set the edge lengths".to_string()),
-                }),
+                _ if sized => checks.push(skipped(
+                    "the input's regional area limits set the edge lengths",
+                )),
                 (Some(s), Some(d)) if d > 0.0 => {
                     let fit = fit_of(covered().flat_map(|(t, c)| {
                         (0..3).map(move |e| {
@@ -279,16 +282,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                     bound("shortest edge / d_min", Some(s.value / d), true, limit, fit);
                 }
                 (None, _) => bound("shortest edge / d_min", None, true, limit, None),
-                _ => checks.push(Check {
-                    what: "shortest edge / d_min".to_string(),
-                    value: None,
-                    relation: "≥".to_string(),
-                    limit,
-                    status: Status::Skipped,
-                    worst: None,
-                    rounding: None,
-                    note: Some("needs the input points (two or more)".to_string()),
-                }),
+                _ => checks.push(skipped("needs the input points (two or more)")),
             }
         }
         if exempt_corners > 0 {

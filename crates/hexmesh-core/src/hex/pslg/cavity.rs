@@ -26,7 +26,6 @@ use crate::geom::Point;
 use crate::hex::lattice::{FxHashSet, Key};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::{Pslg, TriMesh};
-use crate::quality::bounds::HEX;
 
 /// The mesh with the segments inserted, before compaction is undone: vertex keys and marks.
 pub(super) struct Built {
@@ -61,8 +60,8 @@ pub(super) fn insert_segments(
     input: &Pslg,
     segments: &[[Point; 2]],
     crossed: &BTreeMap<Key, Vec<u32>>,
-    dual: TriMesh,
-    dual_keys: Vec<Key>,
+    (dual, dual_keys): (TriMesh, Vec<Key>),
+    min_edge: f64,
     stats: &mut PslgStats,
 ) -> std::result::Result<Built, Error> {
     let n_input = input.points.len();
@@ -180,9 +179,7 @@ pub(super) fn insert_segments(
 
     // Quality along the segments (`band`): the constrained Delaunay triangulation, improved
     // by points on the segments.
-    let d_min = crate::quality::closest_pair(&input.points).map_or(0.0, |c| c.distance);
-    let mut band = Band::new(segments, vertices, on, triangles, n_input)
-        .with_min_edge(HEX.min_edge_over_dmin * d_min);
+    let mut band = Band::new(segments, vertices, on, triangles, n_input).with_min_edge(min_edge);
     band.make_delaunay();
     let left = band.improve(BAND_BUDGET_PER_TRIANGLE * band.tris.len() as u64 + 1000);
     stats.band_inserted += band.inserted;

@@ -63,6 +63,7 @@ pub(super) fn drive(
     // The last mesh whose interior passed, kept with its hierarchy while subdivisions try to
     // repair the near-segment triangles the band left: if they fail, it is the answer.
     let mut fallback: Option<(Hierarchy, TriMesh, Vec<bool>)> = None;
+    // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback.
     let min_edge = crate::quality::closest_pair(&input.points).map_or(0.0, |c| {
         c.distance * crate::quality::bounds::HEX.min_edge_over_dmin
     });
@@ -93,8 +94,8 @@ pub(super) fn drive(
         // MOVED_CENTER_3 hexagons keep their rebuilt dual (`mc3`); Sec. 7.2 keeps them away
         // from the segments, so the cavities below never cut into one.
         let (moved, patch) = relocations(h, &r);
-        let (dual, keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
-        let built = insert_segments(h, input, segments, &crossed, dual, keys, stats)?;
+        let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+        let built = insert_segments(h, input, segments, &crossed, dual, min_edge, stats)?;
         let mut bad = interior_offenders(&built);
         if !bad.is_empty() {
             if let Some((old, mesh, on)) = fallback.take() {

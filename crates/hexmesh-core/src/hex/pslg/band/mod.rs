@@ -77,6 +77,10 @@ impl Cost {
     }
 }
 
+/// A point on one segment that is not an input point: the point, its segment, and its
+/// neighbours along the segment when it has two.
+type Movable = (u32, u32, Option<(u32, u32)>);
+
 /// An edit of the band.
 #[derive(Debug, Clone, Copy)]
 enum Op {
@@ -397,14 +401,16 @@ impl<'a> Band<'a> {
                 ops.push(Op::Insert { u, v, s, q });
             }
         }
-        let mut movable: Vec<u32> = Vec::new();
+        // The points on one segment that are not input points, with their segment and their
+        // neighbours along it.
+        let mut movable: Vec<Movable> = Vec::new();
         for &(u, v, _, _) in &pieces {
             for x in [u, v] {
                 if (x as usize) >= self.n_fixed
                     && self.segs[x as usize].len() == 1
-                    && !movable.contains(&x)
+                    && !movable.iter().any(|m| m.0 == x)
                 {
-                    movable.push(x);
+                    movable.push((x, self.segs[x as usize][0], self.along(x)));
                 }
             }
         }
@@ -413,15 +419,22 @@ impl<'a> Band<'a> {
                 continue;
             }
             ops.push(Op::Delete { w });
-            for &(u, v, s, _) in &pieces {
-                if u == w || v == w {
-                    continue;
-                }
+            // Onto a piece near the triangle, or in place of a point beside it.
+            let places = pieces
+                .iter()
+                .filter(|p| p.0 != w && p.1 != w)
+                .map(|&(u, v, s, _)| (None, u, v, s))
+                .chain(
+                    movable
+                        .iter()
+                        .filter_map(|&(x, s, uv)| uv.map(|(u, v)| (Some(x), u, v, s))),
+                );
+            for (also, u, v, s) in places {
                 let q = self.param(s, self.verts[w as usize]);
                 if self.strictly_between(s, u, v, q) {
                     ops.push(Op::Move {
                         w,
-                        also: None,
+                        also,
                         u,
                         v,
                         s,
@@ -429,33 +442,7 @@ impl<'a> Band<'a> {
                     });
                     ops.push(Op::Snap {
                         w,
-                        also: None,
-                        u,
-                        v,
-                        s,
-                        q,
-                    });
-                }
-            }
-            // Snapped in place of a point already on the segment beside it.
-            for &x in &movable {
-                let Some((u, v)) = self.along(x) else {
-                    continue;
-                };
-                let s = self.segs[x as usize][0];
-                let q = self.param(s, self.verts[w as usize]);
-                if self.strictly_between(s, u, v, q) {
-                    ops.push(Op::Move {
-                        w,
-                        also: Some(x),
-                        u,
-                        v,
-                        s,
-                        q,
-                    });
-                    ops.push(Op::Snap {
-                        w,
-                        also: Some(x),
+                        also,
                         u,
                         v,
                         s,
@@ -464,12 +451,11 @@ impl<'a> Band<'a> {
                 }
             }
         }
-        for w in movable {
+        for &(w, s, uv) in &movable {
             ops.push(Op::Delete { w });
-            let Some((u, v)) = self.along(w) else {
+            let Some((u, v)) = uv else {
                 continue;
             };
-            let s = self.segs[w as usize][0];
             for q in self.params(s, u, v, tri, &targets) {
                 ops.push(Op::Move {
                     w,

@@ -430,8 +430,8 @@ fn nearly_parallel_segments_and_a_point_beside_a_segment_mesh() {
 /// (pslg-wedge-5's 5° corner), and the whole mesh is constrained Delaunay: no exact
 /// empty-circle violation anywhere, on the segments or off them.
 #[test]
-fn the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_circle_violation() {
-    for &name in datasets::PSLG_EXAMPLES {
+fn imr_and_the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_circle_violation() {
+    for name in std::iter::once("imr").chain(datasets::PSLG_EXAMPLES.iter().copied()) {
         let input = datasets::by_name(name).expect("example");
         let run = mesh_and_check(name, &input);
         let within = Bounds {

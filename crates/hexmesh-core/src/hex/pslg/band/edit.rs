@@ -317,6 +317,42 @@ impl Band<'_> {
         self.legalize((first..self.tris.len() as u32).collect())
     }
 
+    /// Moves vertex `w` (off the segments, not an input point) to `to`, keeping its triangles
+    /// and then restoring the constrained Delaunay property by Lawson flips (ours: the dual
+    /// vertex beside a segment given room, as paper 001 Sec. 5.2 moves a lattice corner away
+    /// from the boundary). Inside an open edit; false when a triangle of its star would turn
+    /// over, or the flips do not settle.
+    pub(super) fn shift(&mut self, w: u32, to: Point) -> bool {
+        if (w as usize) < self.n_fixed || !self.segs[w as usize].is_empty() {
+            return false;
+        }
+        let (star, closed) = self.star_ccw(w);
+        if !closed {
+            return false;
+        }
+        let made: Vec<[u32; 3]> = star.iter().map(|&t| self.tris[t as usize]).collect();
+        let pos = |x: u32| if x == w { to } else { self.verts[x as usize] };
+        if made
+            .iter()
+            .any(|t| orient2d(pos(t[0]), pos(t[1]), pos(t[2])) <= 0.0)
+        {
+            return false;
+        }
+        let first = self.tris.len() as u32;
+        self.replace_with(
+            &star,
+            |band| {
+                if let Some(log) = &mut band.log {
+                    log.moved
+                        .push((w, band.verts[w as usize], band.segs[w as usize].clone()));
+                }
+                band.verts[w as usize] = to;
+            },
+            &made,
+        );
+        self.legalize((first..self.tris.len() as u32).collect())
+    }
+
     /// Lawson flips, recorded in the open edit, from the triangles `stack` until every edge
     /// that is not a segment piece passes the exact empty-circle test; false when more than
     /// `MAX_FLIPS` would be needed.

@@ -9,6 +9,13 @@
 //! triangles that remain are triangles of the hexagon dual, whose bounds (43.9°–90°, radius
 //! ratio, Delaunay) the insertion never touches. A free Steiner point (Ruppert's circumcentre)
 //! would make triangles without a segment corner that have to meet the interior bounds.
+//! The other edits (removing, moving or snapping a point, shifting a dual vertex beside a
+//! segment by a fraction of its shortest edge) do change triangles without a segment corner:
+//! each such triangle an edit makes is measured against the interior bounds (Sec. 6 angles,
+//! which imply the radius ratio, and the Sec. 6.3 shortest edge), so an edit that breaks them
+//! is never chosen. The shift is what repaired imr's last two triangles below 30°, where a
+//! dual vertex lay 0.45 of an edge from the segment (removing or snapping it left a hole
+//! whose constrained Delaunay fill broke the interior bounds).
 //!
 //! Insertion is Bowyer–Watson in the constrained Delaunay triangulation (the triangles whose
 //! circumcircle holds the new point, reached without crossing a segment piece), so the mesh
@@ -109,6 +116,8 @@ enum Op {
         s: u32,
         q: f64,
     },
+    /// The dual vertex w moved to `to`, off the segments (`edit::shift`).
+    Shift { w: u32, to: Point },
 }
 
 /// A triangulation with neighbours, the segments each vertex lies on, and undoable edits.
@@ -301,6 +310,7 @@ impl<'a> Band<'a> {
                 None => false,
             },
             Op::Delete { w } => self.delete_vertex(w),
+            Op::Shift { w, to } => self.shift(w, to),
             Op::Snap {
                 w,
                 also,
@@ -419,6 +429,7 @@ impl<'a> Band<'a> {
                 continue;
             }
             ops.push(Op::Delete { w });
+            self.shifts(w, &pieces, &mut ops);
             // Onto a piece near the triangle, or in place of a point beside it.
             let places = pieces
                 .iter()
@@ -468,6 +479,53 @@ impl<'a> Band<'a> {
             }
         }
         ops
+    }
+
+    /// The places worth trying for the dual vertex `w` off the segments (`Op::Shift`): steps
+    /// of a twentieth, a tenth and a fifth of its shortest edge along and across the nearest
+    /// segment piece and diagonally, so that its interior triangles may keep their bounds.
+    fn shifts(&self, w: u32, pieces: &[(u32, u32, u32, u32)], ops: &mut Vec<Op>) {
+        let p = self.verts[w as usize];
+        let Some(&(u, v, _, _)) = pieces.iter().min_by(|a, b| {
+            let d = |x: &(u32, u32, u32, u32)| {
+                let (a, b) = (self.verts[x.0 as usize], self.verts[x.1 as usize]);
+                dist(p, [(a[0] + b[0]) / 2.0, (a[1] + b[1]) / 2.0])
+            };
+            d(a).total_cmp(&d(b))
+        }) else {
+            return;
+        };
+        let (a, b) = (self.verts[u as usize], self.verts[v as usize]);
+        let len = dist(a, b);
+        let edge = self
+            .star(w)
+            .iter()
+            .flat_map(|&t| self.tris[t as usize])
+            .filter(|&x| x != w)
+            .map(|x| dist(p, self.verts[x as usize]))
+            .fold(f64::INFINITY, f64::min);
+        if len == 0.0 || !edge.is_finite() {
+            return;
+        }
+        let d = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+        let n = [-d[1], d[0]];
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let dirs = [
+            d,
+            [-d[0], -d[1]],
+            n,
+            [-n[0], -n[1]],
+            [h * (d[0] + n[0]), h * (d[1] + n[1])],
+            [h * (d[0] - n[0]), h * (d[1] - n[1])],
+            [h * (-d[0] + n[0]), h * (-d[1] + n[1])],
+            [h * (-d[0] - n[0]), h * (-d[1] - n[1])],
+        ];
+        for step in [0.05, 0.1, 0.2] {
+            for e in dirs {
+                let to = [p[0] + step * edge * e[0], p[1] + step * edge * e[1]];
+                ops.push(Op::Shift { w, to });
+            }
+        }
     }
 
     /// The bad triangles the open edit made, worst first (at most `n`).
@@ -542,7 +600,7 @@ impl<'a> Band<'a> {
                 match o {
                     Op::Insert { .. } => self.inserted += 1,
                     Op::Delete { .. } => self.deleted += 1,
-                    Op::Move { .. } | Op::Snap { .. } => self.moved += 1,
+                    Op::Move { .. } | Op::Snap { .. } | Op::Shift { .. } => self.moved += 1,
                 }
             }
         } else {

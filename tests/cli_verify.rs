@@ -314,3 +314,26 @@ fn messages_number_vertices_triangles_and_input_items_as_the_files_read_do() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn hex_fails_a_domain_mesh_with_29_9_degrees_at_a_segment_or_a_split_sharp_corner() {
+    let rect = fixture("near_segment_29_9_input.poly");
+    let wedge = fixture("sharp_corner_input.poly");
+    let apex = fixture("near_segment_120_1_input.poly");
+    let row = "FAIL min angle near segments (deg)";
+    let hex = ["--bounds", "hex", "--input"];
+    assert_caught("near_segment_29_9", &[&hex[..], &[&rect]].concat(), row);
+    assert_caught("sharp_corner_split", &[&hex[..], &[&wedge]].concat(), row);
+    assert_caught(
+        "near_segment_120_1",
+        &[&hex[..], &[&apex]].concat(),
+        "FAIL max angle near segments (deg)",
+    );
+    // The same 10° corner taken whole is the input's, and passes.
+    let (code, text) = verify("sharp_corner_whole", &[&hex[..], &[&wedge]].concat());
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("1 whole sharp input corner left out"),
+        "{text}"
+    );
+}

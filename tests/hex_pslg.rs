@@ -453,6 +453,26 @@ fn imr_and_the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_c
     }
 }
 
+/// Fuzz case 12 of seed 20261123 (tests/fixtures/hex/domains-fuzz-seed20261123-case12-...):
+/// an interior point 0.003 from a segment, in the hexagon the segment cut. hex kept its
+/// interior bounds but had 13° beside the segment; the rule that subdivides a crossed hexagon
+/// holding a point foreign to its segments, and d_min measured between features, give a mesh
+/// that keeps the whole promise.
+#[test]
+fn an_interior_point_beside_a_segment_keeps_the_whole_hex_promise() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(
+        "tests/fixtures/hex/domains-fuzz-seed20261123-case12-interior-point-beside-segment.poly",
+    );
+    let input = hexmesh::io::read_input(&path).expect("the fixture reads");
+    let run = mesh_and_check("case 12", &input);
+    let hex = hexmesh::registry::bounds("hex").expect("hex");
+    let v = verdict(&run.mesh, Some(&input), Some(&hex));
+    assert!(v.passed(), "{v}");
+    let gap = hexmesh::quality::feature_gap(&input).expect("gap");
+    assert_eq!(gap.other, hexmesh::quality::Feature::Segment(2));
+    assert!(gap.distance < 0.003, "{}", gap.distance);
+}
+
 /// spade's issue 96 constraint edges in their bounding box
 /// (tests/fixtures/hex/spade-issue96-box-rule-wave-hang.poly): two segments 0.002 apart over
 /// 7 units ask for hexagons at level 20 between them, and the rule against fins carries that

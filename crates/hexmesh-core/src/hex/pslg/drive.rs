@@ -8,9 +8,12 @@
 //! when validity fails or the rounds run out, the mesher returns an error naming the place.
 //!
 //! Near-segment triangles the band (`band`) could not repair are subdivided around in the
-//! same way for up to `NEAR_ROUNDS` rounds; the mesh and hierarchy from before those rounds
-//! are kept (`fallback`) and returned when the finer lattice breaks an interior bound or the
-//! Sec. 6.3 shortest edge, or grows beyond `MAX_GROWTH`.
+//! same way in rounds before `NEAR_ROUNDS`; of the meshes whose interior passed, the one with
+//! the fewest such triangles is kept with its hierarchy (`fallback`) and returned when the
+//! finer lattice goes below the Sec. 6.3 shortest edge (not promised under a size limit),
+//! grows beyond `MAX_GROWTH`, or still breaks an interior bound when the rounds run out. The
+//! near-segment triangles it keeps fail the promise, and the self-check of `hexmesh mesh`
+//! says so.
 
 use super::cavity::{insert_segments, Built};
 use super::rules::{apply, apply_rules};
@@ -62,9 +65,10 @@ pub(super) fn drive(
     let mut first_size = None;
     // The last mesh whose interior passed, kept with its hierarchy while subdivisions try to
     // repair the near-segment triangles the band left: if they fail, it is the answer.
-    let mut fallback: Option<(Hierarchy, TriMesh, Vec<bool>)> = None;
-    // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback.
-    let min_edge = crate::quality::closest_pair(&input.points).map_or(0.0, |c| {
+    let mut fallback: Option<(usize, Hierarchy, TriMesh, Vec<bool>)> = None;
+    // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback, in
+    // d_min of the domain (`quality::feature_gap`).
+    let min_edge = crate::quality::feature_gap(input).map_or(0.0, |c| {
         c.distance * crate::quality::bounds::HEX.min_edge_over_dmin
     });
     loop {
@@ -72,7 +76,7 @@ pub(super) fn drive(
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         let first = *first_size.get_or_insert(h.full_leaves);
         if h.full_leaves > MAX_GROWTH * first {
-            if let Some((old, mesh, on)) = fallback.take() {
+            if let Some((_, old, mesh, on)) = fallback.take() {
                 *h = old;
                 return Ok((mesh, on));
             }
@@ -97,17 +101,13 @@ pub(super) fn drive(
         let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
         let built = insert_segments(h, input, segments, &crossed, dual, min_edge, stats)?;
         let mut bad = interior_offenders(&built);
-        if !bad.is_empty() {
-            if let Some((old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
-            }
-        }
         // A lattice refined for the near-segment triangles must not go below the Sec. 6.3
         // shortest edge away from the segments; where it would, the mesh before it is the
-        // answer.
-        if fallback.is_some() && bad.is_empty() && interior_edge_below(&built, min_edge) {
-            if let Some((old, mesh, on)) = fallback.take() {
+        // answer. Under a size limit the limit sets the edges, and hex does not promise the
+        // Sec. 6.3 edge (`Mesher::promise`).
+        let sized = h.size_level() > 0;
+        if fallback.is_some() && bad.is_empty() && !sized && interior_edge_below(&built, min_edge) {
+            if let Some((_, old, mesh, on)) = fallback.take() {
                 *h = old;
                 return Ok((mesh, on));
             }
@@ -132,11 +132,24 @@ pub(super) fn drive(
         }
         if near_only {
             // Ours: the band left near-segment triangles it could not repair; a finer lattice
-            // there gives it other points to work with.
-            fallback = Some((h.clone(), built.mesh.clone(), built.on_segment.clone()));
+            // there gives it other points to work with. The mesh with the fewest of them is
+            // kept.
+            let stuck = built.stuck.len();
+            if fallback.as_ref().is_none_or(|f| stuck < f.0) {
+                fallback = Some((
+                    stuck,
+                    h.clone(),
+                    built.mesh.clone(),
+                    built.on_segment.clone(),
+                ));
+            }
             bad = built.stuck.clone();
         }
         if stats.rounds >= MAX_ROUNDS {
+            if let Some((_, old, mesh, on)) = fallback.take() {
+                *h = old;
+                return Ok((mesh, on));
+            }
             let t = bad[0];
             let c = built.mesh.corners(t);
             return Err(Fail::Error(Error::mesher(

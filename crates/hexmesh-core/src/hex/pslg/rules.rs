@@ -7,6 +7,12 @@
 //!   "two consecutive" segments; segments meeting at one input point are consecutive at that
 //!   point, and three or more of them meeting there are allowed too (ours: subdividing cannot
 //!   separate them near their common point).
+//! - h crossed by segments and holding an input point that is not an endpoint of every one of
+//!   them is subdivided (ours, `holds_a_foreign_point`): a point and a segment that does not
+//!   end at it are two features in one hexagon, as two segments without a common endpoint
+//!   are. Without it an interior point 0.003 from a segment sat in the hexagon the segment
+//!   cut, and the triangles between them had 13° (`hexmesh fuzz --domains --mesher hex`, seed
+//!   20261123, case 12; tests/fixtures/hex/domains-fuzz-seed20261123-case12-interior-point-beside-segment.poly).
 //!
 //! The rules run in rounds until none fires (`apply_rules`). Each round subdivides at least
 //! one hexagon or the loop stops with an error naming the cell it stuck at, so the number of
@@ -45,6 +51,18 @@ fn share_an_endpoint(input: &Pslg, set: &[u32]) -> bool {
         .any(|&v| set.iter().all(|&s| input.segments[s as usize].contains(&v)))
 }
 
+/// True when the leaf `key` holds an input point that is not an endpoint of every segment in
+/// `set`, the segments crossing it (ours): the point and a segment that does not end at it
+/// share a hexagon, as two segments without a common endpoint do in the rule of Sec. 7.2.
+fn holds_a_foreign_point(h: &Hierarchy, input: &Pslg, key: Key, set: &[u32]) -> bool {
+    h.occupants(key).iter().any(|&p| {
+        (p as usize) < input.points.len()
+            && set
+                .iter()
+                .any(|&s| !input.segments[s as usize].contains(&p))
+    })
+}
+
 /// The cells the rules of Sec. 7.2 (module docs) want subdivided (full leaves) or made full
 /// (semi-hexagons and absent cells), sorted.
 pub fn segment_actions(h: &Hierarchy, input: &Pslg, crossed: &BTreeMap<Key, Vec<u32>>) -> Vec<Key> {
@@ -70,7 +88,8 @@ fn segment_actions_among(
         match h.cell(key) {
             Cell::Semi { .. } => acts.push(key),
             Cell::Full { subdivided: false } => {
-                let mut split = !share_an_endpoint(input, set);
+                let mut split =
+                    !share_an_endpoint(input, set) || holds_a_foreign_point(h, input, key, set);
                 for d in 0..6 {
                     if is_fin(h, key.edge_child(d)) {
                         split = true;

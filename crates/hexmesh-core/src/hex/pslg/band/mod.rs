@@ -35,11 +35,11 @@ use crate::quality::rounding;
 use edit::Log;
 
 /// The smallest angle of a triangle touching a segment (Triangle's `-q30`), but at an input
-/// corner sharper than it taken whole.
-pub const NEAR_MIN_ANGLE: f64 = 30.0;
+/// corner sharper than it taken whole: hex's promise (`quality::bounds`).
+pub const NEAR_MIN_ANGLE: f64 = crate::quality::bounds::NEAR_SEGMENT_ANGLES.0;
 
 /// The largest angle of a triangle touching a segment (180° − 2·30°).
-pub const NEAR_MAX_ANGLE: f64 = 120.0;
+pub const NEAR_MAX_ANGLE: f64 = crate::quality::bounds::NEAR_SEGMENT_ANGLES.1;
 
 const NONE: u32 = u32::MAX;
 

@@ -409,11 +409,7 @@ fn hex_on_domain(prefix: &str, input: &str) -> hexmesh::quality::Verdict {
 
 /// The rows of a verdict that failed, by name.
 fn failed_rows(v: &hexmesh::quality::Verdict) -> Vec<&str> {
-    v.checks
-        .iter()
-        .filter(|c| c.status == Status::Fail)
-        .map(|c| c.what.as_str())
-        .collect()
+    v.failed().map(|c| c.what.as_str()).collect()
 }
 
 #[test]

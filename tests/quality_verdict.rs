@@ -68,19 +68,18 @@ fn framed_grid_with(xs: [f64; 5]) -> (TriMesh, Pslg) {
     )
 }
 
+/// The names of the rows of `v` that failed.
+fn failed(v: &hexmesh::quality::Verdict) -> Vec<&str> {
+    v.failed().map(|c| c.what.as_str()).collect()
+}
+
 #[test]
 fn hex_holds_its_interior_bounds_away_from_segments_and_30_degrees_beside_them() {
     let (mesh, pslg) = framed_grid();
     let hex = hexmesh::registry::bounds("hex").expect("hex");
     let out = verdict(&mesh, Some(&pslg), Some(&hex));
     // The 26.6° triangles touch the frame: the interior rows pass, the near-segment row fails.
-    let failed: Vec<&str> = out
-        .checks
-        .iter()
-        .filter(|c| c.status == Status::Fail)
-        .map(|c| c.what.as_str())
-        .collect();
-    assert_eq!(failed, vec!["min angle near segments (deg)"], "{out}");
+    assert_eq!(failed(&out), vec!["min angle near segments (deg)"], "{out}");
     // With columns of equal width every triangle is 45°/45°/90°: passed.
     let (square, square_input) = framed_grid_with([0.0, 1.0, 2.0, 3.0, 4.0]);
     let whole = verdict(&square, Some(&square_input), Some(&hex));
@@ -101,14 +100,8 @@ fn hex_holds_its_interior_bounds_away_from_segments_and_30_degrees_beside_them()
     let points_only = Pslg::from_points(pslg.points);
     let out = verdict(&mesh, Some(&points_only), Some(&hex));
     assert!(!out.passed());
-    let failed: Vec<&str> = out
-        .checks
-        .iter()
-        .filter(|c| c.status == Status::Fail)
-        .map(|c| c.what.as_str())
-        .collect();
     assert_eq!(
-        failed,
+        failed(&out),
         vec!["min angle (deg)", "radius ratio R/(2r)"],
         "{out}"
     );

@@ -100,6 +100,11 @@ impl Verdict {
         self
     }
 
+    /// The rows that failed, in table order.
+    pub fn failed(&self) -> impl Iterator<Item = &Check> {
+        self.checks.iter().filter(|c| c.status == Status::Fail)
+    }
+
     /// True when the mesh is valid and no bound fails (skipped checks do not fail).
     pub fn passed(&self) -> bool {
         self.violations.is_empty() && self.checks.iter().all(|c| c.status != Status::Fail)

@@ -278,7 +278,6 @@ impl Band<'_> {
         let m = (0..3).find(|&k| tri0[k] == w).unwrap_or(0);
         let (a, b) = (tri0[(m + 1) % 3], tri0[(m + 2) % 3]);
         let t1 = self.nbr[t0 as usize][m];
-        let pos = |x: u32| if x == w { foot } else { self.verts[x as usize] };
         let mut made: Vec<[u32; 3]> = star
             .iter()
             .filter(|&&t| t != t0)
@@ -295,6 +294,22 @@ impl Band<'_> {
             made.push([w, a, c]);
             killed.push(t1);
         }
+        self.move_vertex(w, foot, Some(s), &killed, &made)
+    }
+
+    /// Replaces the triangles `killed` by `made`, with vertex `w` moved to `to` (and onto
+    /// segment `onto` when given) in between, then restores the constrained Delaunay property
+    /// by Lawson flips; false, with nothing changed, when a triangle of `made` would not be
+    /// counter-clockwise at the new place, and false when the flips do not settle.
+    fn move_vertex(
+        &mut self,
+        w: u32,
+        to: Point,
+        onto: Option<u32>,
+        killed: &[u32],
+        made: &[[u32; 3]],
+    ) -> bool {
+        let pos = |x: u32| if x == w { to } else { self.verts[x as usize] };
         if made
             .iter()
             .any(|t| orient2d(pos(t[0]), pos(t[1]), pos(t[2])) <= 0.0)
@@ -303,16 +318,18 @@ impl Band<'_> {
         }
         let first = self.tris.len() as u32;
         self.replace_with(
-            &killed,
+            killed,
             |band| {
                 if let Some(log) = &mut band.log {
                     log.moved
                         .push((w, band.verts[w as usize], band.segs[w as usize].clone()));
                 }
-                band.verts[w as usize] = foot;
-                band.segs[w as usize] = vec![s];
+                band.verts[w as usize] = to;
+                if let Some(s) = onto {
+                    band.segs[w as usize] = vec![s];
+                }
             },
-            &made,
+            made,
         );
         self.legalize((first..self.tris.len() as u32).collect())
     }
@@ -331,26 +348,7 @@ impl Band<'_> {
             return false;
         }
         let made: Vec<[u32; 3]> = star.iter().map(|&t| self.tris[t as usize]).collect();
-        let pos = |x: u32| if x == w { to } else { self.verts[x as usize] };
-        if made
-            .iter()
-            .any(|t| orient2d(pos(t[0]), pos(t[1]), pos(t[2])) <= 0.0)
-        {
-            return false;
-        }
-        let first = self.tris.len() as u32;
-        self.replace_with(
-            &star,
-            |band| {
-                if let Some(log) = &mut band.log {
-                    log.moved
-                        .push((w, band.verts[w as usize], band.segs[w as usize].clone()));
-                }
-                band.verts[w as usize] = to;
-            },
-            &made,
-        );
-        self.legalize((first..self.tris.len() as u32).collect())
+        self.move_vertex(w, to, None, &star, &made)
     }
 
     /// Lawson flips, recorded in the open edit, from the triangles `stack` until every edge

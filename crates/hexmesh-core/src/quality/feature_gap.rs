@@ -1,6 +1,7 @@
 //! d_min of an input with segments: the smallest distance between two input features that
 //! share no point, that is two input points, or a point and a segment that does not end at
-//! it. Two segments that share no endpoint come nearest at an endpoint of one of them (they
+//! it (nor pass through it: a point on a segment, within the conformity check's tolerance,
+//! splits it). Two segments that share no endpoint come nearest at an endpoint of one of them (they
 //! do not cross: `Pslg::check` refuses that), so point–segment distances cover them. Without
 //! segments it is the closest pair of points, paper 000's d_min (Sec. 6.3).
 //!
@@ -57,6 +58,17 @@ pub(crate) fn point_segment_distance(p: Point, a: Point, b: Point) -> f64 {
         0.0
     };
     scale2(dist(p, [a[0] + t * d[0], a[1] + t * d[1]]), k)
+}
+
+/// The distance from `p` to the segment ab, or `None` when `p` lies on it within the
+/// conformity check's 2^-40 of the segment's coordinate scale (`validate`): such a point
+/// splits the segment, and the two share it.
+fn gap_to_segment(p: Point, a: Point, b: Point) -> Option<f64> {
+    let d = point_segment_distance(p, a, b);
+    let scale = [a[0], a[1], b[0], b[1]]
+        .iter()
+        .fold(crate::geom::dist_scaled(a, b), |m, c| m.max(c.abs()));
+    (d > scale * (-40f64).exp2()).then_some(d)
 }
 
 /// The closest pair of features of `input` (module docs); `None` for fewer than two points or
@@ -142,7 +154,9 @@ pub fn feature_gap(input: &Pslg) -> Option<FeatureGap> {
             if a == i || b == i {
                 continue;
             }
-            let d = point_segment_distance(p, points[a], points[b]);
+            let Some(d) = gap_to_segment(p, points[a], points[b]) else {
+                continue;
+            };
             if d < best.distance {
                 best = FeatureGap {
                     point: i,
@@ -227,11 +241,24 @@ mod tests {
             for s in &segments {
                 let (a, b) = (s[0] as usize, s[1] as usize);
                 if a != i && b != i {
-                    brute = brute.min(point_segment_distance(p, points[a], points[b]));
+                    if let Some(d) = gap_to_segment(p, points[a], points[b]) {
+                        brute = brute.min(d);
+                    }
                 }
             }
         }
         assert_eq!(feature_gap(&input).expect("gap").distance, brute);
+    }
+
+    #[test]
+    fn a_point_on_a_segment_splits_it_and_does_not_count_as_a_gap() {
+        // The midpoint of the bottom side lies on it (an input vertex of its chain).
+        let input = domain(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0]],
+            vec![[0, 1], [1, 2], [2, 3], [3, 0]],
+        );
+        let gap = feature_gap(&input).expect("five points");
+        assert_eq!((gap.other, gap.distance), (Feature::Point(4), 0.5));
     }
 
     #[test]

@@ -191,7 +191,8 @@ impl Band<'_> {
         between: impl FnOnce(&mut Self),
         made: &[[u32; 3]],
     ) {
-        let mut outer: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
+        // An edit touches a handful of triangles: its edges are looked up in short lists.
+        let mut outer: Vec<((u32, u32), u32)> = Vec::with_capacity(3 * killed.len());
         for &t in killed {
             let tri = self.tris[t as usize];
             for i in 0..3 {
@@ -199,7 +200,7 @@ impl Band<'_> {
                 if n != NONE && killed.contains(&n) {
                     continue;
                 }
-                outer.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), n);
+                outer.push(((tri[(i + 1) % 3], tri[(i + 2) % 3]), n));
             }
         }
         for &t in killed {
@@ -214,22 +215,22 @@ impl Band<'_> {
         }
         between(self);
         let first = self.tris.len() as u32;
-        let mut inner: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
+        let mut inner: Vec<((u32, u32), u32)> = Vec::with_capacity(3 * made.len());
         for (k, &tri) in made.iter().enumerate() {
             self.tris.push(tri);
             self.nbr.push([NONE; 3]);
             self.alive.push(true);
             for i in 0..3 {
-                inner.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), first + k as u32);
+                inner.push(((tri[(i + 1) % 3], tri[(i + 2) % 3]), first + k as u32));
             }
         }
         for (k, &tri) in made.iter().enumerate() {
             let t = first + k as u32;
             for i in 0..3 {
                 let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-                if let Some(&o) = inner.get(&(y, x)) {
+                if let Some(&(_, o)) = inner.iter().find(|e| e.0 == (y, x)) {
                     self.nbr[t as usize][i] = o;
-                } else if let Some(&n) = outer.get(&(x, y)) {
+                } else if let Some(&(_, n)) = outer.iter().find(|e| e.0 == (x, y)) {
                     self.nbr[t as usize][i] = n;
                     if n != NONE {
                         if let Some(sl) = self.slot(n, y, x) {
@@ -243,8 +244,8 @@ impl Band<'_> {
             }
         }
         // An outer edge no new triangle took is now on the mesh's boundary.
-        for (&(x, y), &n) in &outer {
-            if n != NONE && !inner.contains_key(&(x, y)) {
+        for &((x, y), n) in &outer {
+            if n != NONE && !inner.iter().any(|e| e.0 == (x, y)) {
                 if let Some(sl) = self.slot(n, y, x) {
                     if self.nbr[n as usize][sl] != NONE
                         && !self.alive[self.nbr[n as usize][sl] as usize]

@@ -63,8 +63,9 @@ pub(super) fn drive(
     crate::hex::size::refine(h)?;
     let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
     let mut first_size = None;
-    // The last mesh whose interior passed, kept with its hierarchy while subdivisions try to
-    // repair the near-segment triangles the band left: if they fail, it is the answer.
+    // Of the meshes whose interior passed, the one with the fewest near-segment triangles the
+    // band left (that count first), kept with its hierarchy while subdivisions try to repair
+    // them: if they fail, it is the answer.
     let mut fallback: Option<(usize, Hierarchy, TriMesh, Vec<bool>)> = None;
     // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback, in
     // d_min of the domain (`quality::feature_gap`).

@@ -310,16 +310,8 @@ pub fn off_segment_delaunay_violations(
     mesh: &TriMesh,
     input: &Pslg,
 ) -> (usize, Option<DelaunayEdge>) {
-    use crate::quality::validate::chains::{input_vertices, walk_segments, Adjacency};
     let topo = topology(mesh);
-    let adjacency = Adjacency::new(mesh, &topo.usable);
-    let vertex_of = input_vertices(mesh, input);
-    let on_segment: std::collections::HashSet<(u32, u32)> =
-        walk_segments(mesh, input, &adjacency, &vertex_of)
-            .into_iter()
-            .flat_map(|w| w.edges)
-            .map(|(u, w)| (u.min(w), u.max(w)))
-            .collect();
+    let on_segment = crate::quality::validate::chains::segment_edges(mesh, input, &topo);
     let opposite = |t: usize, u: u32, v: u32| {
         mesh.triangles[t]
             .iter()

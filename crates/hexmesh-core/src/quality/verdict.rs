@@ -162,30 +162,9 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 .filter(|&t| part[t] && mesh.triangles[t].iter().all(|&v| (v as usize) < n))
                 .map(|t| (t, mesh.corners(t)))
         };
-        let worst_at = |t: usize, value: f64| WorstTriangle {
-            triangle: t,
-            corners: mesh.corners(t),
-            value,
-        };
-        // A figure with its limit: it fails when some triangle uses more than its allowance
-        // (`nearest`, the one nearest to breaking it); `most` is the largest allowance used.
+        // A figure with its limit, in the part of the mesh the shape bounds cover (`fit_check`).
         let mut bound = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>| {
-            let failed = fit.is_some_and(|f| !f.holds());
-            checks.push(Check {
-                what: what.to_string(),
-                value,
-                relation: if ge { "≥" } else { "≤" }.to_string(),
-                limit,
-                status: if failed { Status::Fail } else { Status::Ok },
-                worst: fit
-                    .filter(|_| failed)
-                    .map(|f| worst_at(f.nearest.triangle, f.nearest.value)),
-                rounding: fit.map(|f| Rounding {
-                    used: f.most.used,
-                    allowance: f.most.allowance,
-                }),
-                note: note.clone(),
-            });
+            checks.push(fit_check(mesh, what, (value, ge, limit), fit, note.clone()));
         };
         let mut exempt_corners = 0usize;
         if let Some(limit) = b.min_angle {
@@ -305,22 +284,9 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             checks.push(edge_check(mesh, limit));
         }
         if b.delaunay {
-            let count = m.delaunay_violations;
-            let failed = count > 0;
-            checks.push(Check {
-                what: "non-Delaunay edges (exact)".to_string(),
-                value: Some(count as f64),
-                relation: "=".to_string(),
-                limit: 0.0,
-                status: if failed { Status::Fail } else { Status::Ok },
-                worst: m.delaunay_first.filter(|_| failed).map(|e| WorstTriangle {
-                    triangle: e.triangles[0],
-                    corners: mesh.corners(e.triangles[0]),
-                    value: count as f64,
-                }),
-                rounding: None,
-                note: note.clone(),
-            });
+            let what = "non-Delaunay edges (exact)";
+            let (count, first) = (m.delaunay_violations, m.delaunay_first);
+            checks.push(delaunay_check(mesh, what, count, first, note.clone()));
         }
     }
     Verdict {
@@ -392,24 +358,7 @@ fn near_segment_checks(
         k => format!("{note}; {k} whole sharp input corners left out"),
     };
     let row = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>, note| {
-        let failed = fit.is_some_and(|f| !f.holds());
-        Check {
-            what: what.to_string(),
-            value,
-            relation: if ge { "≥" } else { "≤" }.to_string(),
-            limit,
-            status: if failed { Status::Fail } else { Status::Ok },
-            worst: fit.filter(|_| failed).map(|f| WorstTriangle {
-                triangle: f.nearest.triangle,
-                corners: mesh.corners(f.nearest.triangle),
-                value: f.nearest.value,
-            }),
-            rounding: fit.map(|f| Rounding {
-                used: f.most.used,
-                allowance: f.most.allowance,
-            }),
-            note: Some(note),
-        }
+        fit_check(mesh, what, (value, ge, limit), fit, Some(note))
     };
     [
         row(
@@ -435,9 +384,52 @@ fn near_segment_checks(
 /// no edge off the input segments fails the exact empty-circle test.
 fn constrained_delaunay_check(mesh: &TriMesh, input: &Pslg) -> Check {
     let (count, first) = crate::quality::metrics::off_segment_delaunay_violations(mesh, input);
+    let what = "non-Delaunay edges off the segments (exact)";
+    delaunay_check(mesh, what, count, first, Some("whole mesh".to_string()))
+}
+
+/// The row of a figure held to a limit with the rounding allowance (`value` ≥ or ≤ `limit`,
+/// as `ge` says): it fails when some triangle uses more than its allowance (`fit.nearest`,
+/// the one nearest to breaking it, is then named); `fit.most` is the largest allowance used.
+fn fit_check(
+    mesh: &TriMesh,
+    what: &str,
+    (value, ge, limit): (Option<f64>, bool, f64),
+    fit: Option<Fit>,
+    note: Option<String>,
+) -> Check {
+    let failed = fit.is_some_and(|f| !f.holds());
+    Check {
+        what: what.to_string(),
+        value,
+        relation: if ge { "≥" } else { "≤" }.to_string(),
+        limit,
+        status: if failed { Status::Fail } else { Status::Ok },
+        worst: fit.filter(|_| failed).map(|f| WorstTriangle {
+            triangle: f.nearest.triangle,
+            corners: mesh.corners(f.nearest.triangle),
+            value: f.nearest.value,
+        }),
+        rounding: fit.map(|f| Rounding {
+            used: f.most.used,
+            allowance: f.most.allowance,
+        }),
+        note,
+    }
+}
+
+/// The row of a count of edges that fail the exact empty-circle test, which must be 0; a
+/// triangle of the first such edge is named when it fails.
+fn delaunay_check(
+    mesh: &TriMesh,
+    what: &str,
+    count: usize,
+    first: Option<crate::quality::DelaunayEdge>,
+    note: Option<String>,
+) -> Check {
     let failed = count > 0;
     Check {
-        what: "non-Delaunay edges off the segments (exact)".to_string(),
+        what: what.to_string(),
         value: Some(count as f64),
         relation: "=".to_string(),
         limit: 0.0,
@@ -448,7 +440,7 @@ fn constrained_delaunay_check(mesh: &TriMesh, input: &Pslg) -> Check {
             value: count as f64,
         }),
         rounding: None,
-        note: Some("whole mesh".to_string()),
+        note,
     }
 }
 

@@ -182,3 +182,19 @@ pub(crate) fn walk_segments(
     }
     out
 }
+
+/// The mesh edges (smaller vertex first) that lie on input segments, as [`walk_segments`]
+/// finds them in a mesh of topology `topo`.
+pub(crate) fn segment_edges(
+    mesh: &TriMesh,
+    input: &Pslg,
+    topo: &super::Topology,
+) -> std::collections::HashSet<(u32, u32)> {
+    let adjacency = Adjacency::new(mesh, &topo.usable);
+    let vertex_of = input_vertices(mesh, input);
+    walk_segments(mesh, input, &adjacency, &vertex_of)
+        .into_iter()
+        .flat_map(|w| w.edges)
+        .map(|(u, w)| (u.min(w), u.max(w)))
+        .collect()
+}

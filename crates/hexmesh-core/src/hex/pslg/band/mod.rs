@@ -88,6 +88,18 @@ impl Cost {
 /// neighbours along the segment when it has two.
 type Movable = (u32, u32, Option<(u32, u32)>);
 
+/// Where `Op::Snap` and `Op::Move` take vertex `w`: parameter `q` of segment `s`, on its
+/// piece between the vertices u and v, in place of the point `also` when given.
+#[derive(Debug, Clone, Copy)]
+struct Onto {
+    w: u32,
+    also: Option<u32>,
+    u: u32,
+    v: u32,
+    s: u32,
+    q: f64,
+}
+
 /// An edit of the band.
 #[derive(Debug, Clone, Copy)]
 enum Op {
@@ -97,25 +109,11 @@ enum Op {
     Delete { w: u32 },
     /// The dual vertex w moved onto the piece uv of segment s at parameter q, after the
     /// point `also` on that segment is removed when given (`edit::snap`).
-    Snap {
-        w: u32,
-        also: Option<u32>,
-        u: u32,
-        v: u32,
-        s: u32,
-        q: f64,
-    },
+    Snap(Onto),
     /// The point w on a segment moved to parameter q, between its neighbours u and v; or a
-    /// vertex w off the segments moved onto the piece uv of segment s (snapped), taking the
-    /// place of the point `also` on that piece when given.
-    Move {
-        w: u32,
-        also: Option<u32>,
-        u: u32,
-        v: u32,
-        s: u32,
-        q: f64,
-    },
+    /// vertex w off the segments moved onto the piece uv of segment s (removed and inserted
+    /// there), taking the place of the point `also` on that piece when given.
+    Move(Onto),
     /// The dual vertex w moved to `to`, off the segments (`edit::shift`).
     Shift { w: u32, to: Point },
 }
@@ -311,22 +309,22 @@ impl<'a> Band<'a> {
             },
             Op::Delete { w } => self.delete_vertex(w),
             Op::Shift { w, to } => self.shift(w, to),
-            Op::Snap {
+            Op::Snap(Onto {
                 w,
                 also,
                 u,
                 v,
                 s,
                 q,
-            } => also.is_none_or(|x| self.delete_vertex(x)) && self.snap(w, u, v, s, q),
-            Op::Move {
+            }) => also.is_none_or(|x| self.delete_vertex(x)) && self.snap(w, u, v, s, q),
+            Op::Move(Onto {
                 w,
                 also,
                 u,
                 v,
                 s,
                 q,
-            } => {
+            }) => {
                 self.delete_vertex(w)
                     && also.is_none_or(|x| self.delete_vertex(x))
                     && match self.edge_triangle(u, v) {
@@ -443,22 +441,16 @@ impl<'a> Band<'a> {
             for (also, u, v, s) in places {
                 let q = self.param(s, self.verts[w as usize]);
                 if self.strictly_between(s, u, v, q) {
-                    ops.push(Op::Move {
+                    let onto = Onto {
                         w,
                         also,
                         u,
                         v,
                         s,
                         q,
-                    });
-                    ops.push(Op::Snap {
-                        w,
-                        also,
-                        u,
-                        v,
-                        s,
-                        q,
-                    });
+                    };
+                    ops.push(Op::Move(onto));
+                    ops.push(Op::Snap(onto));
                 }
             }
         }
@@ -468,14 +460,14 @@ impl<'a> Band<'a> {
                 continue;
             };
             for q in self.params(s, u, v, tri, &targets) {
-                ops.push(Op::Move {
+                ops.push(Op::Move(Onto {
                     w,
                     also: None,
                     u,
                     v,
                     s,
                     q,
-                });
+                }));
             }
         }
         ops
@@ -600,7 +592,7 @@ impl<'a> Band<'a> {
                 match o {
                     Op::Insert { .. } => self.inserted += 1,
                     Op::Delete { .. } => self.deleted += 1,
-                    Op::Move { .. } | Op::Snap { .. } | Op::Shift { .. } => self.moved += 1,
+                    Op::Move(_) | Op::Snap(_) | Op::Shift { .. } => self.moved += 1,
                 }
             }
         } else {

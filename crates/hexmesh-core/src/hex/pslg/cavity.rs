@@ -15,7 +15,7 @@
 
 use std::collections::BTreeMap;
 
-use super::band::Band;
+use super::band::{Band, Effort};
 use super::domain::carve;
 use super::fill::fill_cavity;
 use super::project::projected_centres;
@@ -60,7 +60,7 @@ pub(super) fn insert_segments(
     segments: &[[Point; 2]],
     crossed: &BTreeMap<Key, Vec<u32>>,
     (dual, dual_keys): (TriMesh, Vec<Key>),
-    min_edge: f64,
+    effort: Effort,
     stats: &mut PslgStats,
 ) -> std::result::Result<Built, Error> {
     let n_input = input.points.len();
@@ -178,7 +178,7 @@ pub(super) fn insert_segments(
 
     // Quality along the segments (`band`): the constrained Delaunay triangulation, improved
     // by points on the segments.
-    let mut band = Band::new(segments, vertices, on, triangles, n_input).with_min_edge(min_edge);
+    let mut band = Band::new(segments, vertices, on, triangles, n_input).with_effort(effort);
     band.make_delaunay();
     let left = band.improve(BAND_BUDGET_PER_TRIANGLE * band.tris.len() as u64 + 1000);
     stats.band_inserted += band.inserted;

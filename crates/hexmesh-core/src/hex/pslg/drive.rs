@@ -12,9 +12,12 @@
 //! the fewest such triangles is kept with its hierarchy (`fallback`) and returned when the
 //! finer lattice goes below the Sec. 6.3 shortest edge (not promised under a size limit),
 //! grows beyond `MAX_GROWTH`, or still breaks an interior bound when the rounds run out. The
+//! Before it is returned, the band is run again on it with the thorough search
+//! (`band::Effort::thorough`), whose mesh is taken when it leaves fewer such triangles. The
 //! near-segment triangles it keeps fail the promise, and the self-check of `hexmesh mesh`
 //! says so.
 
+use super::band::Effort;
 use super::cavity::{insert_segments, Built};
 use super::rules::{apply, apply_rules};
 use super::{leaf_of_vertex, PslgStats, MAX_GROWTH, MAX_ROUNDS, NAME, NEAR_ROUNDS};
@@ -30,6 +33,7 @@ use crate::hex::refine::refine_simple;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::{validate, ValidateOptions};
+use std::collections::BTreeMap;
 
 /// Why the driver stopped.
 pub(super) enum Fail {
@@ -66,7 +70,7 @@ pub(super) fn drive(
     // Of the meshes whose interior passed, the one with the fewest near-segment triangles the
     // band left (that count first), kept with its hierarchy while subdivisions try to repair
     // them: if they fail, it is the answer.
-    let mut fallback: Option<(usize, Hierarchy, TriMesh, Vec<bool>)> = None;
+    let mut fallback: Option<Fallback> = None;
     // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback, in
     // d_min of the domain (`quality::feature_gap`).
     let min_edge = crate::quality::feature_gap(input).map_or(0.0, |c| {
@@ -77,9 +81,8 @@ pub(super) fn drive(
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         let first = *first_size.get_or_insert(h.full_leaves);
         if h.full_leaves > MAX_GROWTH * first {
-            if let Some((_, old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
+            if let Some(f) = fallback.take() {
+                return Ok(f.finish(h, input, segments, min_edge, stats)?);
             }
             return Err(Fail::Error(Error::mesher(
                 NAME,
@@ -100,7 +103,11 @@ pub(super) fn drive(
         // from the segments, so the cavities below never cut into one.
         let (moved, patch) = relocations(h, &r);
         let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
-        let built = insert_segments(h, input, segments, &crossed, dual, min_edge, stats)?;
+        let effort = Effort {
+            min_edge,
+            thorough: false,
+        };
+        let built = insert_segments(h, input, segments, &crossed, dual, effort, stats)?;
         let mut bad = interior_offenders(&built);
         // A lattice refined for the near-segment triangles must not go below the Sec. 6.3
         // shortest edge away from the segments; where it would, the mesh before it is the
@@ -108,27 +115,13 @@ pub(super) fn drive(
         // Sec. 6.3 edge (`Mesher::promise`).
         let sized = h.size_level() > 0;
         if fallback.is_some() && bad.is_empty() && !sized && interior_edge_below(&built, min_edge) {
-            if let Some((_, old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
+            if let Some(f) = fallback.take() {
+                return Ok(f.finish(h, input, segments, min_edge, stats)?);
             }
         }
         let near_only = bad.is_empty() && !built.stuck.is_empty() && stats.rounds < NEAR_ROUNDS;
         if bad.is_empty() && !near_only {
-            let violations = validate(
-                &built.mesh,
-                Some(input),
-                &ValidateOptions {
-                    single_component: false,
-                    conforming: true,
-                },
-            );
-            if let Some(v) = violations.first() {
-                return Err(Fail::Error(Error::mesher(
-                    NAME,
-                    format!("internal error: the PSLG mesh is not valid: {v}"),
-                )));
-            }
+            checked(&built.mesh, input)?;
             return Ok((built.mesh, built.on_segment));
         }
         if near_only {
@@ -136,20 +129,20 @@ pub(super) fn drive(
             // there gives it other points to work with. The mesh with the fewest of them is
             // kept.
             let stuck = built.stuck.len();
-            if fallback.as_ref().is_none_or(|f| stuck < f.0) {
-                fallback = Some((
+            if fallback.as_ref().is_none_or(|f| stuck < f.stuck) {
+                fallback = Some(Fallback {
                     stuck,
-                    h.clone(),
-                    built.mesh.clone(),
-                    built.on_segment.clone(),
-                ));
+                    h: h.clone(),
+                    crossed: crossed.clone(),
+                    mesh: built.mesh.clone(),
+                    on_segment: built.on_segment.clone(),
+                });
             }
             bad = built.stuck.clone();
         }
         if stats.rounds >= MAX_ROUNDS {
-            if let Some((_, old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
+            if let Some(f) = fallback.take() {
+                return Ok(f.finish(h, input, segments, min_edge, stats)?);
             }
             let t = bad[0];
             let c = built.mesh.corners(t);
@@ -183,6 +176,70 @@ pub(super) fn drive(
         split.dedup();
         stats.verify_splits += apply(h, split)?;
         candidates = around(&h.log);
+    }
+}
+
+/// A mesh whose interior passed, with near-segment triangles the band left (`stuck` of them),
+/// and the hierarchy and crossed cells it was built from.
+struct Fallback {
+    stuck: usize,
+    h: Hierarchy,
+    crossed: BTreeMap<Key, Vec<u32>>,
+    mesh: TriMesh,
+    on_segment: Vec<bool>,
+}
+
+impl Fallback {
+    /// Makes `h` this fallback's hierarchy and returns its mesh, or the mesh the thorough
+    /// band search (`Effort::thorough`) builds on it when that one leaves fewer near-segment
+    /// triangles and keeps the interior bounds and, without a size limit, the Sec. 6.3
+    /// shortest edge.
+    fn finish(
+        self,
+        h: &mut Hierarchy,
+        input: &Pslg,
+        segments: &[[Point; 2]],
+        min_edge: f64,
+        stats: &mut PslgStats,
+    ) -> std::result::Result<(TriMesh, Vec<bool>), Error> {
+        *h = self.h;
+        let r = rings(h);
+        let (moved, patch) = relocations(h, &r);
+        let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+        let effort = Effort {
+            min_edge,
+            thorough: true,
+        };
+        let built = insert_segments(h, input, segments, &self.crossed, dual, effort, stats)?;
+        let sized = h.size_level() > 0;
+        if built.stuck.len() < self.stuck
+            && interior_offenders(&built).is_empty()
+            && (sized || !interior_edge_below(&built, min_edge))
+        {
+            checked(&built.mesh, input)?;
+            return Ok((built.mesh, built.on_segment));
+        }
+        checked(&self.mesh, input)?;
+        Ok((self.mesh, self.on_segment))
+    }
+}
+
+/// An error when `mesh` is not a valid conforming mesh of `input` (`quality::validate`).
+fn checked(mesh: &TriMesh, input: &Pslg) -> std::result::Result<(), Error> {
+    let violations = validate(
+        mesh,
+        Some(input),
+        &ValidateOptions {
+            single_component: false,
+            conforming: true,
+        },
+    );
+    match violations.first() {
+        Some(v) => Err(Error::mesher(
+            NAME,
+            format!("internal error: the PSLG mesh is not valid: {v}"),
+        )),
+        None => Ok(()),
     }
 }
 

@@ -36,7 +36,11 @@
 //! worst ones the first made, stopping at the first pair that improves. Trying every pair
 //! took 24 s on a domain fuzz case of 2,600 triangles, and shifts as second edits 420 s on
 //! spade's issue 96 box; a triangle no edit repaired is tried again only after an edit
-//! changed the triangles near it.
+//! changed the triangles near it. The thorough search (`Effort::thorough`: every pair,
+//! shifts as second edits, the best kept) is run once, on the mesh the driver is about to
+//! return with triangles left (domain fuzz seed 20261123, cases 537 and 798,
+//! tests/fixtures/hex/domains-fuzz-seed20261123-case537-thorough-band.poly and
+//! tests/fixtures/hex/domains-fuzz-seed20261123-case798-thorough-band.poly).
 //!
 //! Termination: an edit is made only when it lowers the measure, and the number of edits is
 //! capped by a budget; triangles no candidate repairs are returned to the driver, which
@@ -138,6 +142,18 @@ struct Onto {
     q: f64,
 }
 
+/// What the repair is held to and how hard it searches.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Effort {
+    /// The shortest edge an interior triangle the band makes may have (Sec. 6.3:
+    /// √7/(12√3)·d_min).
+    pub min_edge: f64,
+    /// Search every pair of edits, shifts as second edits included, for the best one, rather
+    /// than stop at the first pair that improves: for the driver's last mesh when the usual
+    /// search left near-segment triangles (`drive`).
+    pub thorough: bool,
+}
+
 /// An edit of the band.
 #[derive(Debug, Clone, Copy)]
 enum Op {
@@ -178,8 +194,8 @@ pub(super) struct Band<'a> {
     n_fixed: usize,
     /// Triangles below this index are the ones the band was given.
     n_given: usize,
-    /// The shortest edge an interior triangle may have (Sec. 6.3: √7/(12√3)·d_min).
-    min_edge: f64,
+    /// What the repair is held to and how hard it searches.
+    effort: Effort,
     /// Edits made so far.
     edits: u64,
     /// For each vertex, the number of the last edit that changed the triangles around it.
@@ -235,7 +251,7 @@ impl<'a> Band<'a> {
             log: None,
             n_fixed,
             n_given: n_tris,
-            min_edge: 0.0,
+            effort: Effort::default(),
             edits: 0,
             changed: vec![0; n],
             inserted: 0,
@@ -245,9 +261,10 @@ impl<'a> Band<'a> {
         }
     }
 
-    /// This band with interior triangles held to a shortest edge of `min_edge`.
-    pub fn with_min_edge(mut self, min_edge: f64) -> Band<'a> {
-        self.min_edge = min_edge;
+    /// This band with interior triangles held to `effort.min_edge`, searching as `effort`
+    /// says.
+    pub fn with_effort(mut self, effort: Effort) -> Band<'a> {
+        self.effort = effort;
         self
     }
 
@@ -276,7 +293,7 @@ impl<'a> Band<'a> {
             // The shortest edge is held against the triangles the band makes; the dual's own
             // are the self-check's (`drive`).
             let short = t as usize >= self.n_given
-                && (0..3).any(|m| dist(c[m], c[(m + 1) % 3]) < self.min_edge);
+                && (0..3).any(|m| dist(c[m], c[(m + 1) % 3]) < self.effort.min_edge);
             if breaks_bounds(&c) || short {
                 let excess: f64 = (0..3)
                     .map(|m| {
@@ -624,7 +641,7 @@ impl<'a> Band<'a> {
             // them that some second edit completes to an improvement.
             tried.sort_by(|a, b| a.0.order(&b.0));
             for &(_, op) in &tried {
-                if best.is_some() {
+                if best.is_some() && !self.effort.thorough {
                     break;
                 }
                 self.begin();
@@ -641,7 +658,7 @@ impl<'a> Band<'a> {
                     second.extend(
                         self.ops(n)
                             .into_iter()
-                            .filter(|o| !matches!(o, Op::Shift { .. })),
+                            .filter(|o| self.effort.thorough || !matches!(o, Op::Shift { .. })),
                     );
                 }
                 self.rollback();
@@ -704,22 +721,38 @@ impl<'a> Band<'a> {
     /// `budget` insertions are made; returns the bad triangles left. A triangle no edit
     /// repaired is tried again only once an edit has changed the triangles near it.
     pub fn improve(&mut self, budget: u64) -> Vec<u32> {
+        if !self.effort.thorough {
+            return self.improve_with(budget);
+        }
+        // The usual search first, then the thorough one on what it left: the thorough search
+        // from the start orders its edits differently and can end worse (domain fuzz case
+        // 798 kept an interior triangle at 40°).
+        self.effort.thorough = false;
+        let left = self.improve_with(budget);
+        self.effort.thorough = true;
+        if left.is_empty() {
+            return left;
+        }
+        self.improve_with(budget)
+    }
+
+    fn improve_with(&mut self, budget: u64) -> Vec<u32> {
         let mut made = 0u64;
         let mut failed: crate::hex::lattice::FxHashMap<u32, u64> = Default::default();
         loop {
-            let mut bad: Vec<(f64, u32)> = (0..self.tris.len() as u32)
+            let mut bad: Vec<(i64, f64, u32)> = (0..self.tris.len() as u32)
                 .filter(|&t| self.alive[t as usize])
                 .filter_map(|t| {
                     let c = self.cost(t);
-                    (c.bad > 0).then_some((c.excess, t))
+                    (c.bad > 0).then_some((c.interior, c.excess, t))
                 })
                 .collect();
             if bad.is_empty() {
                 return Vec::new();
             }
-            bad.sort_by(|a, b| b.0.total_cmp(&a.0).then(a.1.cmp(&b.1)));
+            bad.sort_by(|a, b| b.0.cmp(&a.0).then(b.1.total_cmp(&a.1)).then(a.2.cmp(&b.2)));
             let mut progressed = false;
-            for &(_, t) in &bad {
+            for &(_, _, t) in &bad {
                 if made >= budget {
                     break;
                 }

@@ -327,21 +327,27 @@ proptest! {
     }
 }
 
-/// Every configuration a test or the proptest found, kept under tests/fixtures/hex/pslg-*.poly
-/// (each file's comment says what it found), meshes valid and conforming with the interior
-/// bounds, and the refinement stays bounded.
-#[test]
-fn pslg_fixtures_mesh_valid_and_conforming() {
+/// The .poly files under tests/fixtures/hex whose names start with `prefix`, sorted.
+fn hex_fixtures(prefix: &str) -> Vec<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/hex");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("fixture directory")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
             let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
-            name.is_some_and(|n| n.starts_with("pslg-") && n.ends_with(".poly"))
+            name.is_some_and(|n| n.starts_with(prefix) && n.ends_with(".poly"))
         })
         .collect();
     files.sort();
+    files
+}
+
+/// Every configuration a test or the proptest found, kept under tests/fixtures/hex/pslg-*.poly
+/// (each file's comment says what it found), meshes valid and conforming with the interior
+/// bounds, and the refinement stays bounded.
+#[test]
+fn pslg_fixtures_mesh_valid_and_conforming() {
+    let files = hex_fixtures("pslg-");
     assert!(files.len() >= 2, "{files:?}");
     for path in files {
         let name = path
@@ -480,16 +486,7 @@ fn an_interior_point_beside_a_segment_keeps_the_whole_hex_promise() {
 /// 3.4e-4 long in a polygon of span 2, now takes a few thousand triangles.
 #[test]
 fn domain_fuzz_fixtures_keep_the_whole_hex_promise_within_the_fuzz_budget() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/hex");
-    let mut files: Vec<_> = std::fs::read_dir(&dir)
-        .expect("fixture directory")
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| {
-            let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
-            name.is_some_and(|n| n.starts_with("domains-fuzz-") && n.ends_with(".poly"))
-        })
-        .collect();
-    files.sort();
+    let files = hex_fixtures("domains-fuzz-");
     assert!(files.len() >= 4, "{files:?}");
     let hex = hexmesh::registry::bounds("hex").expect("hex");
     for path in files {

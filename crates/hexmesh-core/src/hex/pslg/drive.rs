@@ -98,16 +98,11 @@ pub(super) fn drive(
             .keys()
             .map(|k| h.lattice.radius(k.k))
             .fold(0.0, f64::max);
-        let r = rings(h);
-        // MOVED_CENTER_3 hexagons keep their rebuilt dual (`mc3`); Sec. 7.2 keeps them away
-        // from the segments, so the cavities below never cut into one.
-        let (moved, patch) = relocations(h, &r);
-        let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
         let effort = Effort {
             min_edge,
             thorough: false,
         };
-        let built = insert_segments(h, input, segments, &crossed, dual, effort, stats)?;
+        let built = build(h, input, segments, &crossed, effort, stats)?;
         let mut bad = interior_offenders(&built);
         // A lattice refined for the near-segment triangles must not go below the Sec. 6.3
         // shortest edge away from the segments; where it would, the mesh before it is the
@@ -179,6 +174,24 @@ pub(super) fn drive(
     }
 }
 
+/// The mesh of hierarchy `h`: its dual with the relocations, the segments inserted into it,
+/// and the band's repair with `effort`.
+fn build(
+    h: &Hierarchy,
+    input: &Pslg,
+    segments: &[[Point; 2]],
+    crossed: &BTreeMap<Key, Vec<u32>>,
+    effort: Effort,
+    stats: &mut PslgStats,
+) -> std::result::Result<Built, Error> {
+    let r = rings(h);
+    // MOVED_CENTER_3 hexagons keep their rebuilt dual (`mc3`); Sec. 7.2 keeps them away from
+    // the segments, so the cavities below never cut into one.
+    let (moved, patch) = relocations(h, &r);
+    let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+    insert_segments(h, input, segments, crossed, dual, effort, stats)
+}
+
 /// A mesh whose interior passed, with near-segment triangles the band left (`stuck` of them),
 /// and the hierarchy and crossed cells it was built from.
 struct Fallback {
@@ -203,14 +216,11 @@ impl Fallback {
         stats: &mut PslgStats,
     ) -> std::result::Result<(TriMesh, Vec<bool>), Error> {
         *h = self.h;
-        let r = rings(h);
-        let (moved, patch) = relocations(h, &r);
-        let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
         let effort = Effort {
             min_edge,
             thorough: true,
         };
-        let built = insert_segments(h, input, segments, &self.crossed, dual, effort, stats)?;
+        let built = build(h, input, segments, &self.crossed, effort, stats)?;
         let sized = h.size_level() > 0;
         if built.stuck.len() < self.stuck
             && interior_offenders(&built).is_empty()

@@ -8,7 +8,8 @@
 //! when validity fails or the rounds run out, the mesher returns an error naming the place.
 //!
 //! Near-segment triangles the band (`band`) could not repair are subdivided around in the
-//! same way in rounds before `NEAR_ROUNDS`; of the meshes whose interior passed, the one with
+//! same way in rounds before `NEAR_ROUNDS`, the hexagons coarser than the finest level of the
+//! first round first; of the meshes whose interior passed, the one with
 //! the fewest such triangles is kept with its hierarchy (`fallback`) and returned when the
 //! finer lattice goes below the Sec. 6.3 shortest edge (not promised under a size limit),
 //! grows beyond `MAX_GROWTH`, or still breaks an interior bound when the rounds run out. The
@@ -67,6 +68,7 @@ pub(super) fn drive(
     crate::hex::size::refine(h)?;
     let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
     let mut first_size = None;
+    let mut finest: Option<u8> = None;
     // Of the meshes whose interior passed, the one with the fewest near-segment triangles the
     // band left (that count first), kept with its hierarchy while subdivisions try to repair
     // them: if they fail, it is the answer.
@@ -169,6 +171,18 @@ pub(super) fn drive(
             .collect();
         split.sort();
         split.dedup();
+        if near_only {
+            // Ours: the hexagons coarser than the finest level the rules made first (domain
+            // fuzz seed 20261123, case 3283: a coarse triangle beside the outer boundary
+            // stuck beside fine ones at a small hole, where a finer level would put an
+            // interior edge below Sec. 6.3 and end the rounds before the coarse one is
+            // tried).
+            let finest = *finest
+                .get_or_insert_with(|| h.leaves().iter().map(|(k, _)| k.k).max().unwrap_or(0));
+            if split.iter().any(|k| k.k < finest) {
+                split.retain(|k| k.k < finest);
+            }
+        }
         stats.verify_splits += apply(h, split)?;
         candidates = around(&h.log);
     }

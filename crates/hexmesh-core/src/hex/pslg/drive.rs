@@ -9,14 +9,14 @@
 //!
 //! Near-segment triangles the band (`band`) could not repair are subdivided around in the
 //! same way in rounds before `NEAR_ROUNDS`, the hexagons coarser than the finest level of the
-//! first round first; of the meshes whose interior passed, the one with
-//! the fewest such triangles is kept with its hierarchy (`fallback`) and returned when the
-//! finer lattice goes below the Sec. 6.3 shortest edge (not promised under a size limit),
-//! grows beyond `MAX_GROWTH`, or still breaks an interior bound when the rounds run out. The
-//! Before it is returned, the band is run again on it with the thorough search
-//! (`band::Effort::thorough`), whose mesh is taken when it leaves fewer such triangles. The
-//! near-segment triangles it keeps fail the promise, and the self-check of `hexmesh mesh`
-//! says so.
+//! first round first. Of the meshes whose interior passed, the one with the fewest such
+//! triangles is kept with its hierarchy (`Fallback`) and returned when the finer lattice goes
+//! below the Sec. 6.3 shortest edge (not promised under a size limit), grows beyond
+//! `MAX_GROWTH`, still breaks an interior bound when the rounds run out, or has no fewer such
+//! triangles than the mesh of round `NEAR_ROUNDS`. Before it is returned, the band is run
+//! again on it with the thorough search (`band::Effort::thorough`), whose mesh is taken when
+//! it leaves fewer such triangles. The near-segment triangles it keeps fail the promise, and
+//! the self-check of `hexmesh mesh` says so.
 
 use super::band::Effort;
 use super::cavity::{insert_segments, Built};
@@ -116,11 +116,11 @@ pub(super) fn drive(
                 return Ok(f.finish(h, input, segments, min_edge, stats)?);
             }
         }
-        let near_only = bad.is_empty() && !built.stuck.is_empty() && stats.rounds < NEAR_ROUNDS;
-        if bad.is_empty() && !near_only {
+        if bad.is_empty() && built.stuck.is_empty() {
             checked(&built.mesh, input)?;
             return Ok((built.mesh, built.on_segment));
         }
+        let near_only = bad.is_empty();
         if near_only {
             // Ours: the band left near-segment triangles it could not repair; a finer lattice
             // there gives it other points to work with. The mesh with the fewest of them is
@@ -134,6 +134,11 @@ pub(super) fn drive(
                     mesh: built.mesh.clone(),
                     on_segment: built.on_segment.clone(),
                 });
+            }
+            if stats.rounds >= NEAR_ROUNDS {
+                if let Some(f) = fallback.take() {
+                    return Ok(f.finish(h, input, segments, min_edge, stats)?);
+                }
             }
             bad = built.stuck.clone();
         }

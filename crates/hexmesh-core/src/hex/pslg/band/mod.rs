@@ -736,6 +736,8 @@ impl<'a> Band<'a> {
         self.improve_with(budget)
     }
 
+    /// One pass of `improve` with the search `self.effort` says: the bad triangles in turn,
+    /// interior ones first, then the worst first.
     fn improve_with(&mut self, budget: u64) -> Vec<u32> {
         let mut made = 0u64;
         let mut failed: crate::hex::lattice::FxHashMap<u32, u64> = Default::default();

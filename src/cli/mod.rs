@@ -227,6 +227,13 @@ struct VerifyArgs {
     /// as segments after the file's), as `mesh --convex-hull` meshed it.
     #[arg(long)]
     convex_hull: bool,
+    /// Check every triangle's area against this limit (and, with --input, each region's own
+    /// limit), as `mesh --max-area` asked; with a mesher's --bounds, its promise under it.
+    #[arg(long)]
+    max_area: Option<f64>,
+    /// Check every edge's length against this limit, as `mesh --max-edge` asked.
+    #[arg(long, value_name = "L")]
+    max_edge: Option<f64>,
 }
 
 /// Runs the command line; `main` returns this.
@@ -565,11 +572,7 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
         input: input.as_ref().map_or(1, |(_, base)| *base),
     };
     let input = input.map(|(pslg, _)| pslg);
-    let bounds = args
-        .bounds
-        .as_deref()
-        .map(crate::registry::bounds)
-        .transpose()?;
+    let bounds = verify_bounds(args)?;
     let verdict =
         crate::quality::verdict(mesh, input.as_ref(), bounds.as_ref()).numbered(numbering);
     if args.json {
@@ -587,6 +590,38 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// What `verify` checks: the bounds named by --bounds, with the size limits given. A
+/// mesher's bounds under a limit are its promise for a run with that limit (hex gives up the
+/// Sec. 6.3 shortest edge under one); other bounds, or validity alone, get the limits added.
+fn verify_bounds(args: &VerifyArgs) -> Result<Option<Bounds>> {
+    for (what, v) in [("--max-area", args.max_area), ("--max-edge", args.max_edge)] {
+        if v.is_some_and(|v| !v.is_finite() || v <= 0.0) {
+            return Err(Error::Usage(format!(
+                "{what} must be a positive number, not {}",
+                v.unwrap_or_default()
+            )));
+        }
+    }
+    let named = args.bounds.as_deref();
+    if args.max_area.is_none() && args.max_edge.is_none() {
+        return named.map(crate::registry::bounds).transpose();
+    }
+    if let Some(m) = named.and_then(|n| crate::registry::mesher(n).ok()) {
+        let params = Params {
+            max_area: args.max_area,
+            max_edge: args.max_edge,
+            ..Params::default()
+        };
+        let promise = m.promise(&params);
+        return Ok(Some(promise.with_size_limits(args.max_area, args.max_edge)));
+    }
+    let base = match named {
+        Some(n) => crate::registry::bounds(n)?,
+        None => Bounds::validity("valid"),
+    };
+    Ok(Some(base.with_size_limits(args.max_area, args.max_edge)))
 }
 
 /// For a file with its own node and element tags (Gmsh), the tags of the vertices and

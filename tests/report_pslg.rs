@@ -80,6 +80,7 @@ fn every_segment_mesher_gets_a_checked_row_for_every_example_and_the_readme_a_se
         for c in [
             "validity_violations",
             "conformity_violations",
+            "near_obtuse_angles",
             "covered_area",
         ] {
             assert!(!r[c].is_empty(), "{what}: {c} is empty");
@@ -90,6 +91,13 @@ fn every_segment_mesher_gets_a_checked_row_for_every_example_and_the_readme_a_se
                 (area - e.area).abs() < 1e-9 * e.area,
                 "{what}: covers {area}"
             );
+        }
+        // The count of near angles above 90° agrees with the largest near angle.
+        if num(r, "near_max_angle") <= 90.0 {
+            assert_eq!(num(r, "near_obtuse_angles"), 0.0, "{what}");
+        }
+        if num(r, "near_max_angle") > 90.0 + 1e-6 {
+            assert!(num(r, "near_obtuse_angles") >= 1.0, "{what}");
         }
         if r["shape"] == "pslg-wedge-5" {
             // Every triangulation of the wedge has a triangle in its 5° corner.

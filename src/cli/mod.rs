@@ -355,20 +355,12 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         .map(|f| crate::io::Format::parse(f))
         .collect::<Result<Vec<_>>>()?;
     refuse_to_overwrite_input(args, &formats)?;
-    for (what, v) in [
+    positive(&[
         ("--min-angle", args.min_angle),
         ("--max-area", args.max_area),
         ("--max-edge", args.max_edge),
         ("--max-rounding", args.max_rounding),
-    ] {
-        if let Some(v) = v {
-            if !v.is_finite() || v <= 0.0 {
-                return Err(Error::Usage(format!(
-                    "{what} must be a positive number, not {v}"
-                )));
-            }
-        }
-    }
+    ])?;
     if args.hexagons.is_some() && !matches!(mesher.name(), "hex-simple" | "hex") {
         return Err(Error::Usage(format!(
             "--hexagons draws the hexagon subdivision of hex-simple or hex, not of {}",
@@ -592,18 +584,24 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     })
 }
 
+/// A usage error naming the first option given whose value is not a positive finite number.
+fn positive(options: &[(&str, Option<f64>)]) -> Result<()> {
+    match options
+        .iter()
+        .find_map(|&(what, v)| v.filter(|v| !v.is_finite() || *v <= 0.0).map(|v| (what, v)))
+    {
+        Some((what, v)) => Err(Error::Usage(format!(
+            "{what} must be a positive number, not {v}"
+        ))),
+        None => Ok(()),
+    }
+}
+
 /// What `verify` checks: the bounds named by --bounds, with the size limits given. A
 /// mesher's bounds under a limit are its promise for a run with that limit (hex gives up the
 /// Sec. 6.3 shortest edge under one); other bounds, or validity alone, get the limits added.
 fn verify_bounds(args: &VerifyArgs) -> Result<Option<Bounds>> {
-    for (what, v) in [("--max-area", args.max_area), ("--max-edge", args.max_edge)] {
-        if v.is_some_and(|v| !v.is_finite() || v <= 0.0) {
-            return Err(Error::Usage(format!(
-                "{what} must be a positive number, not {}",
-                v.unwrap_or_default()
-            )));
-        }
-    }
+    positive(&[("--max-area", args.max_area), ("--max-edge", args.max_edge)])?;
     let named = args.bounds.as_deref();
     if args.max_area.is_none() && args.max_edge.is_none() {
         return named.map(crate::registry::bounds).transpose();

@@ -137,14 +137,8 @@ pub fn pslg_rows(
         for m in meshers {
             progress(&format!("{} × {}", e.name, m.name()));
             let outcome = run_case(exe, *m, (e.name, &e.pslg), runs, timeout, triangle_switches);
-            let mut row = row_of(e, &outcome.row, outcome.verdict.as_ref());
-            if let (Some(mesh), Some(split)) = (
-                &outcome.mesh,
-                outcome.verdict.as_ref().and_then(|v| v.split.as_ref()),
-            ) {
-                row.near_obtuse_angles = Some(obtuse_angles(mesh, &split.near_triangles));
-            }
-            rows.push(row);
+            let verdict = outcome.verdict.as_ref();
+            rows.push(row_of(e, &outcome.row, verdict, outcome.mesh.as_ref()));
             if PICTURED_EXAMPLES.contains(&e.name) {
                 if let Some(mesh) = outcome.mesh {
                     pictured.push((e.name, m.name().to_string(), mesh));
@@ -173,7 +167,12 @@ fn obtuse_angles(mesh: &TriMesh, near: &[usize]) -> u64 {
         .sum()
 }
 
-fn row_of(e: &PslgExample, r: &super::Row, verdict: Option<&Verdict>) -> PslgRow {
+fn row_of(
+    e: &PslgExample,
+    r: &super::Row,
+    verdict: Option<&Verdict>,
+    mesh: Option<&TriMesh>,
+) -> PslgRow {
     let split = verdict.and_then(|v| v.split.as_ref());
     let conformity = verdict.map(|v| {
         v.violations
@@ -204,7 +203,9 @@ fn row_of(e: &PslgExample, r: &super::Row, verdict: Option<&Verdict>) -> PslgRow
         near_triangles: split.map(|s| s.near.triangles as u64),
         near_min_angle: split.and_then(|s| value(s.near.min_angle)),
         near_max_angle: split.and_then(|s| value(s.near.max_angle)),
-        near_obtuse_angles: None,
+        near_obtuse_angles: mesh
+            .zip(split)
+            .map(|(m, s)| obtuse_angles(m, &s.near_triangles)),
         interior_triangles: split.map(|s| s.interior.triangles as u64),
         interior_min_angle: split.and_then(|s| value(s.interior.min_angle)),
         interior_max_angle: split.and_then(|s| value(s.interior.max_angle)),
@@ -368,7 +369,12 @@ mod tests {
 
     fn row(shape: &str, mesher: &str) -> PslgRow {
         let e = crate::datasets::pslg_example(shape).expect("an example");
-        let mut r = row_of(&e, &super::super::Row::empty(shape, 4, mesher, "1"), None);
+        let mut r = row_of(
+            &e,
+            &super::super::Row::empty(shape, 4, mesher, "1"),
+            None,
+            None,
+        );
         r.complete = true;
         r.triangles = Some(100);
         r.validity_violations = Some(0);

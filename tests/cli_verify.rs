@@ -338,6 +338,50 @@ fn hex_fails_a_domain_mesh_with_29_9_degrees_at_a_segment_or_a_split_sharp_corne
     );
 }
 
+/// rhomb's domain promise (paper 001): every angle in [30°, 90°], near the segments too, but
+/// an input corner sharper than 30° taken whole. A rectangle cut into 29.99° triangles, a
+/// border-box whose Steiner point makes 90.01°, and a 10° corner split by an edge all fail
+/// `--bounds rhomb`; the same corner whole passes.
+#[test]
+fn rhomb_fails_a_domain_mesh_with_29_99_or_90_01_degrees_or_a_split_sharp_corner() {
+    let rhomb = |input: &str| {
+        vec![
+            "--bounds".to_string(),
+            "rhomb".into(),
+            "--input".into(),
+            fixture(input),
+        ]
+    };
+    let caught = |name: &str, input: &str, needle: &str| {
+        let args = rhomb(input);
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        assert_caught(name, &args, needle);
+    };
+    caught(
+        "near_segment_29_99",
+        "near_segment_29_99_input.poly",
+        "FAIL min angle (deg): worst triangle 1",
+    );
+    caught(
+        "border_box_90_01",
+        "border_box_90_01_input.poly",
+        "FAIL max angle (deg): worst triangle 2",
+    );
+    caught(
+        "sharp_corner_split",
+        "sharp_corner_input.poly",
+        "FAIL min angle (deg)",
+    );
+    let args = rhomb("sharp_corner_input.poly");
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let (code, text) = verify("sharp_corner_whole", &args);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("1 angle at input corners sharper than the bound, taken whole"),
+        "{text}"
+    );
+}
+
 /// `verify --max-area/--max-edge` checks from outside what `mesh --max-area` asked: hex's
 /// mesh of pslg-holes under 0.01 passes at 0.01 and fails a limit a hundredth of it, and a
 /// limit that is not a positive number exits 2.

@@ -249,7 +249,7 @@ fn every_fixture_is_readable_and_checked_without_panicking() {
         })
         .collect();
     prefixes.sort();
-    assert_eq!(prefixes.len(), 23, "{prefixes:?}");
+    assert_eq!(prefixes.len(), 25, "{prefixes:?}");
     for p in prefixes {
         let mesh = read_mesh(&p);
         for name in ["hex", "valid"] {

@@ -14,7 +14,11 @@
 //! - `status` (groundwork of step 9): which tree corners lie in the domain, passed along the
 //!   leaves' sides in time linear in the tree;
 //! - `angles` (tests only): every angle of a domain mesh, exempting only the angles at input
-//!   vertices between two input segments, against the bounds with the rounding allowance.
+//!   vertices between two input segments, against the bounds with the rounding allowance;
+//! - `boxes` (Sec. 5.3, steps 8, 11, 16; tests only until steps 8-9 build fronts from the
+//!   tree): the strip between a front of moved corners and a segment, triangulated with
+//!   points on the segment in [30°, 90°]; its proptest cuts a uniform lattice by a line in
+//!   every direction, moves the corners by Sec. 5.2 case 1 and triangulates the strip.
 //!
 //! Steps 1–3 run (`quad_tree`), the corners of four equal rhombs near the boundary are sorted
 //! by Sec. 5.2 case 1, and step 7 enforces the moving condition at the others
@@ -36,6 +40,8 @@
 
 #[cfg(test)]
 mod angles;
+#[cfg(test)]
+mod boxes;
 mod condition;
 mod corner;
 mod crowded;

@@ -64,15 +64,16 @@ pub enum Failure {
     /// Front corner `0` is not strictly on the domain's side of S, or its foot does not lie
     /// strictly after the previous corner's foot between S's ends.
     Front(usize),
-    /// No ladder keeps the bounds; the best reaches front corner `reached` with `margin`.
-    Bounds { reached: usize, margin: f64 },
+    /// No ladder keeps the bounds: the best one's worst triangle (its margin) touches front
+    /// corner `at`, or no ladder gets past front corner `at` at all.
+    Bounds { at: usize, margin: f64 },
 }
 
 /// The score of triangle abc: its smallest angle's margin above 30°, or, when an angle
 /// exceeds 90°, that excess negated if it is worse; `None` when abc is not counter-clockwise
 /// by the exact sign. Right angles are the construction's (the feet), so only the smallest
 /// angle is maximised.
-fn score(a: Point, b: Point, c: Point) -> Option<f64> {
+pub fn score(a: Point, b: Point, c: Point) -> Option<f64> {
     if orient2d(a, b, c) <= 0.0 {
         return None;
     }
@@ -121,6 +122,38 @@ fn steiner_offsets(hp: f64, hq: f64, gap: f64, beta_p: f64, beta_q: f64) -> Vec<
     out
 }
 
+/// The candidate points on the line ab (the domain on its left) strictly between the feet of
+/// neighbouring front corners p and q (p's foot first along ab): the ends and middles of
+/// the intervals where one Steiner point makes the paper's box triangles in bounds
+/// (`steiner_offsets`), and BETWEEN points evenly spread; in order from p's foot.
+pub fn box_points(p: Point, q: Point, a: Point, b: Point) -> Vec<Point> {
+    let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
+    let len2 = ux * ux + uy * uy;
+    let len = len2.sqrt();
+    let foot = |p: Point| ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / len2;
+    let (t, next) = (foot(p), foot(q));
+    let at = |t: f64| [a[0] + t * ux, a[1] + t * uy];
+    let height = |p: Point| orient2d(a, b, p) / len;
+    let gap = (next - t) * len;
+    if gap.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
+        return Vec::new();
+    }
+    let beta_p = angle_deg(p, at(t), q);
+    let beta_q = angle_deg(q, p, at(next));
+    let mut fractions: Vec<f64> = steiner_offsets(height(p), height(q), gap, beta_p, beta_q)
+        .into_iter()
+        .map(|x| x / gap)
+        .chain((1..=BETWEEN).map(|s| s as f64 / (BETWEEN + 1) as f64))
+        .filter(|f| *f > 0.0 && *f < 1.0)
+        .collect();
+    fractions.sort_by(f64::total_cmp);
+    fractions.dedup();
+    fractions
+        .into_iter()
+        .map(|f| at(t + f * (next - t)))
+        .collect()
+}
+
 /// Triangulates the strip between `front` (the moved corners, ordered from S's end `a`
 /// towards `b`, all on S's left: the domain's side) and the segment ab, keeping every angle
 /// in [30°, 90°] (within `SLACK`).
@@ -138,52 +171,97 @@ pub fn strip(front: &[Point], a: Point, b: Point) -> Result<Strip, Failure> {
         feet.push(t);
     }
     let at = |t: f64| [a[0] + t * ux, a[1] + t * uy];
-    // Candidates on S: each foot, then the paper's Steiner points of the box it starts and
-    // BETWEEN points evenly spread, in order, before the next foot.
-    let len = len2.sqrt();
-    let height = |p: Point| orient2d(a, b, p) / len;
+    // Candidates on S: each foot, then the points of the box it starts, before the next foot.
     let mut on = Vec::new();
     let mut foot_index = Vec::with_capacity(front.len());
     for (k, &t) in feet.iter().enumerate() {
         foot_index.push(on.len());
         on.push(at(t));
-        if let Some(&next) = feet.get(k + 1) {
-            let (p, q) = (front[k], front[k + 1]);
-            let gap = (next - t) * len;
-            let beta_p = angle_deg(p, at(t), q);
-            let beta_q = angle_deg(q, p, at(next));
-            let mut fractions: Vec<f64> =
-                steiner_offsets(height(p), height(q), gap, beta_p, beta_q)
-                    .into_iter()
-                    .map(|x| x / gap)
-                    .chain((1..=BETWEEN).map(|s| s as f64 / (BETWEEN + 1) as f64))
-                    .filter(|f| *f > 0.0 && *f < 1.0)
-                    .collect();
-            fractions.sort_by(f64::total_cmp);
-            fractions.dedup();
-            on.extend(fractions.into_iter().map(|f| at(t + f * (next - t))));
+        if k + 1 < front.len() {
+            on.extend(box_points(front[k], front[k + 1], a, b));
         }
     }
-    let (m, n) = (front.len(), on.len());
+    let m = front.len();
     if m == 0 {
         return Err(Failure::Front(0));
     }
-    // best[i][k]: the best margin of a ladder from (front 0, foot 0) to the edge
-    // (front i, candidate k), with the step that reached it. Candidates beyond front i's
-    // neighbours' feet are out of reach of a valid ladder (its triangles would fold), so
-    // each row only spans the candidates between the feet of i − 1 and i + 1.
+    // Candidates beyond front i's neighbours' feet are out of reach of a valid ladder (its
+    // triangles would fold), so each front corner only meets the candidates between the
+    // feet of its neighbours.
+    let window: Vec<(usize, usize)> = (0..m)
+        .map(|i| {
+            (
+                foot_index[i.saturating_sub(1)],
+                foot_index[(i + 1).min(m - 1)],
+            )
+        })
+        .collect();
+    let (margin, mut triangles) = ladder(front, &on, &window, SPAN, &|_, _| Some(f64::INFINITY))?;
+    // Keep only the candidates the triangles use.
+    let mut renumber = vec![usize::MAX; on.len()];
+    let mut on_segment = Vec::new();
+    for t in &triangles {
+        for v in t {
+            if let Vertex::Segment(k) = *v {
+                if renumber[k] == usize::MAX {
+                    renumber[k] = usize::MAX - 1;
+                }
+            }
+        }
+    }
+    for (k, r) in renumber.iter_mut().enumerate() {
+        if *r == usize::MAX - 1 {
+            *r = on_segment.len();
+            on_segment.push(on[k]);
+        }
+    }
+    for t in &mut triangles {
+        for v in t.iter_mut() {
+            if let Vertex::Segment(k) = *v {
+                *v = Vertex::Segment(renumber[k]);
+            }
+        }
+    }
+    Ok(Strip {
+        on_segment,
+        triangles,
+        margin,
+    })
+}
+
+/// The ladder between two chains (paper 001's border-boxes generalised, ours): `front` (the
+/// moved corners, in order) above and `inner` below (points on the segments and whatever
+/// lies between them, in order, the domain on the left walking along `inner`). Each
+/// triangle joins a side of one chain to a vertex of the other, counter-clockwise. A side
+/// along `inner` may run from point k0 to a later point k (at most `span` on), leaving out
+/// those between, when `link(k0, k)` allows it: `Some(score)` of the triangle that side
+/// brings on its other side (a fan triangle at a corner; infinity when none), `None` when it
+/// may not. Front corner i meets only the inner points of `window[i]` (inclusive). The
+/// ladder runs from the edge (front[0], inner[window[0].0]) to (front[m−1],
+/// inner[window[m−1].1]) and maximises the smallest angle with every angle in [30°, 90°]
+/// within `SLACK`. Returns that margin above 30° and the triangles, `Segment(k)` naming
+/// inner point k.
+pub fn ladder(
+    front: &[Point],
+    inner: &[Point],
+    window: &[(usize, usize)],
+    span: usize,
+    link: &dyn Fn(usize, usize) -> Option<f64>,
+) -> Result<(f64, Vec<[Vertex; 3]>), Failure> {
     #[derive(Clone, Copy)]
     enum Step {
         Start,
         Front(usize),   // from (i − 1, k): triangle (s_k, p_i, p_{i−1})
         Segment(usize), // from (i, k'): triangle (s_k', s_k, p_i)
     }
-    let lo = |i: usize| foot_index[i.saturating_sub(1)];
-    let hi = |i: usize| foot_index[(i + 1).min(m - 1)];
+    let (m, n) = (front.len(), inner.len());
+    // best[i][k]: the best (margin, triangle count, step) of a ladder from the start to the
+    // edge (front i, inner k).
     let mut best: Vec<Vec<Option<(f64, usize, Step)>>> = Vec::with_capacity(m);
     for i in 0..m {
         let mut row: Vec<Option<(f64, usize, Step)>> = vec![None; n];
-        for k in lo(i)..=hi(i) {
+        let (lo, hi) = window[i];
+        for k in lo..=hi.min(n - 1) {
             let mut cell: Option<(f64, usize, Step)> = None;
             let mut take = |cand: (f64, usize, Step)| {
                 let better = match cell {
@@ -195,94 +273,80 @@ pub fn strip(front: &[Point], a: Point, b: Point) -> Result<Strip, Failure> {
                     cell = Some(cand);
                 }
             };
-            if i == 0 && k == foot_index[0] {
+            if i == 0 && k == window[0].0 {
                 take((f64::INFINITY, 0, Step::Start));
             }
             if i > 0 {
-                if let Some((mm, c, _)) = best[i - 1].get(k).copied().flatten() {
-                    if let Some(g) = score(on[k], front[i], front[i - 1]) {
+                if let Some((mm, c, _)) = best[i - 1][k] {
+                    if let Some(g) = score(inner[k], front[i], front[i - 1]) {
                         take((mm.min(g), c + 1, Step::Front(k)));
                     }
                 }
             }
-            for k0 in k.saturating_sub(SPAN).max(lo(i))..k {
-                if let Some((mm, c, _)) = row[k0] {
-                    if let Some(g) = score(on[k0], on[k], front[i]) {
-                        take((mm.min(g), c + 1, Step::Segment(k0)));
-                    }
+            for k0 in k.saturating_sub(span).max(lo)..k {
+                let Some((mm, c, _)) = row[k0] else {
+                    continue;
+                };
+                let Some(extra) = link(k0, k) else {
+                    continue;
+                };
+                if let Some(g) = score(inner[k0], inner[k], front[i]) {
+                    take((mm.min(g).min(extra), c + 1, Step::Segment(k0)));
                 }
             }
             row[k] = cell;
         }
         best.push(row);
     }
-    let end = foot_index[m - 1];
-    let reached = |i: usize| {
-        best[i]
-            .iter()
-            .flatten()
-            .map(|e| e.0)
-            .fold(f64::NEG_INFINITY, f64::max)
-    };
-    let Some((value, _, _)) = best[m - 1][end] else {
+    let end = window[m - 1].1;
+    let Some((value, _, _)) = best[m - 1].get(end).copied().flatten() else {
         let i = (0..m).rev().find(|&i| best[i].iter().any(Option::is_some));
+        let margin = i.map_or(f64::NEG_INFINITY, |i| {
+            best[i]
+                .iter()
+                .flatten()
+                .map(|e| e.0)
+                .fold(f64::NEG_INFINITY, f64::max)
+        });
         return Err(Failure::Bounds {
-            reached: i.unwrap_or(0),
-            margin: i.map_or(f64::NEG_INFINITY, reached),
+            at: i.map_or(0, |i| (i + 1).min(m - 1)),
+            margin,
         });
     };
-    if value < -SLACK {
-        return Err(Failure::Bounds {
-            reached: m - 1,
-            margin: value,
-        });
-    }
-    // Walk the steps back, then keep only the candidates the triangles use.
     let mut triangles = Vec::new();
+    let mut worst = (f64::INFINITY, 0);
     let (mut i, mut k) = (m - 1, end);
     loop {
         match best[i][k].expect("on the path").2 {
             Step::Start => break,
             Step::Front(k0) => {
+                let g = score(inner[k0], front[i], front[i - 1]).unwrap_or(f64::NEG_INFINITY);
+                if g < worst.0 {
+                    worst = (g, i);
+                }
                 triangles.push([Vertex::Segment(k0), Vertex::Front(i), Vertex::Front(i - 1)]);
                 i -= 1;
                 k = k0;
             }
             Step::Segment(k0) => {
+                let g = score(inner[k0], inner[k], front[i]).unwrap_or(f64::NEG_INFINITY);
+                let extra = link(k0, k).unwrap_or(f64::NEG_INFINITY);
+                if g.min(extra) < worst.0 {
+                    worst = (g.min(extra), i);
+                }
                 triangles.push([Vertex::Segment(k0), Vertex::Segment(k), Vertex::Front(i)]);
                 k = k0;
             }
         }
     }
+    if value < -SLACK {
+        return Err(Failure::Bounds {
+            at: worst.1,
+            margin: value,
+        });
+    }
     triangles.reverse();
-    let mut used = vec![false; n];
-    for t in &triangles {
-        for v in t {
-            if let Vertex::Segment(s) = *v {
-                used[s] = true;
-            }
-        }
-    }
-    let mut renumber = vec![usize::MAX; n];
-    let mut on_segment = Vec::new();
-    for s in 0..n {
-        if used[s] {
-            renumber[s] = on_segment.len();
-            on_segment.push(on[s]);
-        }
-    }
-    for t in &mut triangles {
-        for v in t.iter_mut() {
-            if let Vertex::Segment(s) = *v {
-                *v = Vertex::Segment(renumber[s]);
-            }
-        }
-    }
-    Ok(Strip {
-        on_segment,
-        triangles,
-        margin: value,
-    })
+    Ok((value, triangles))
 }
 
 #[cfg(test)]

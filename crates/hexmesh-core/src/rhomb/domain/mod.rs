@@ -18,7 +18,11 @@
 //! - `boxes` (Sec. 5.3, steps 8, 11, 16; tests only until steps 8-9 build fronts from the
 //!   tree): the strip between a front of moved corners and a segment, triangulated with
 //!   points on the segment in [30°, 90°]; its proptest cuts a uniform lattice by a line in
-//!   every direction, moves the corners by Sec. 5.2 case 1 and triangulates the strip.
+//!   every direction, moves the corners by Sec. 5.2 case 1 and triangulates the strip;
+//! - `fan` (Sec. 5.6–5.8 replaced, ours; tests only until the tree gives it fronts): an
+//!   input corner filled by one ladder from W through c (or a fan of triangles at c, or the
+//!   wedge of a sharp corner) to V; its tests fill corners of 10°–350° in a unit lattice,
+//!   eroding the lattice corner where the least bad ladder fails and trying again.
 //!
 //! Steps 1–3 run (`quad_tree`), the corners of four equal rhombs near the boundary are sorted
 //! by Sec. 5.2 case 1, and step 7 enforces the moving condition at the others
@@ -46,6 +50,8 @@ mod condition;
 mod corner;
 mod crowded;
 mod exact;
+#[cfg(test)]
+mod fan;
 mod halves;
 mod input;
 mod moving;

@@ -144,13 +144,18 @@ fn extract_all_from(
     }
     let mut b = Builder::new(h, placement, moved, &patch.dropped, true);
     let items = expand(h, root_triangles(h), PARALLEL_SUBTREES);
-    let parts = {
+    // The subtrees go in waves, each split over the threads and absorbed before the next
+    // starts: only one wave's parts are alive beside the growing builder (with all parts at
+    // once, the last one alone was about 23 bytes a triangle beside the whole builder at
+    // plane-100k).
+    let wave = items.len().div_ceil(PARALLEL_WAVES).max(1);
+    // Each part's share of the full leaves, if the subtrees share them evenly, with room for
+    // an uneven split: reserved but untouched room costs no memory.
+    let per_item = h.full_leaves.div_ceil(items.len().max(1));
+    for items in items.chunks(wave) {
         let base = &b;
-        // Each part's share of the full leaves, if the subtrees share them evenly, with room
-        // for an uneven split: reserved but untouched room costs no memory.
-        let share = |chunk: usize| (h.full_leaves * chunk).div_ceil(items.len().max(1)) * 5 / 4;
-        crate::hex::parallel::in_parallel_from(&items, 2, |chunk| {
-            let leaves = share(chunk.len());
+        let parts = crate::hex::parallel::in_parallel_from(items, 2, |chunk| {
+            let leaves = per_item * chunk.len() * 5 / 4;
             let mut part = Part {
                 index: KeyIndex::with_capacity(leaves),
                 vertices: Vec::with_capacity(leaves),
@@ -167,10 +172,10 @@ fn extract_all_from(
             // Only the vertices and triangles are merged.
             part.index = KeyIndex::default();
             part
-        })
-    };
-    for part in parts {
-        b.absorb(part);
+        });
+        for part in parts {
+            b.absorb(part);
+        }
     }
     for tri in &patch.triangles {
         b.emit_patch(*tri);
@@ -183,6 +188,9 @@ const PARALLEL_EXTRACT_MIN: usize = 1 << 16;
 
 /// `extract_all` expands the first levels until this many subtrees are pending.
 const PARALLEL_SUBTREES: usize = 1024;
+
+/// `extract_all` meets the subtrees in this many waves (`extract_all_from`).
+const PARALLEL_WAVES: usize = 16;
 
 /// A lattice triangle of the recursion with whether each of its hexagons is subdivided
 /// (outside counts as subdivided).
@@ -501,13 +509,16 @@ impl<'a> Builder<'a> {
         let map: Vec<u32> = part
             .vertices
             .iter()
-            .map(|&(key, p)| match self.index.get(&key) {
+            .map(|&key| match self.index.get(&key) {
                 Some(v) => {
                     debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
                     self.used[v as usize] = true;
                     v
                 }
-                None => self.push_vertex(key, p),
+                None => {
+                    let p = self.place(key);
+                    self.push_vertex(key, p)
+                }
             })
             .collect();
         self.triangles.reserve(part.triangles.len());
@@ -594,11 +605,12 @@ fn point_at(h: &Hierarchy, key: Key) -> Option<u32> {
 const LOCAL: u32 = 1 << 31;
 
 /// The triangles one thread of `extract_all` emits for its subtrees, with the vertices it met
-/// that the builder's index did not hold, in the order it met them.
+/// that the builder's index did not hold, in the order it met them (their canonical keys: the
+/// builder places the new ones when it absorbs the part).
 #[derive(Default)]
 struct Part {
     index: KeyIndex,
-    vertices: Vec<(Key, Point)>,
+    vertices: Vec<Key>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -614,7 +626,7 @@ impl Part {
                 Some(v) => v,
                 None => {
                     let v = LOCAL | self.vertices.len() as u32;
-                    self.vertices.push((keys[m], base.place(keys[m])));
+                    self.vertices.push(keys[m]);
                     self.index.insert(keys[m], v);
                     v
                 }

@@ -60,7 +60,12 @@ pub fn relocations_of(
         }
         out
     });
-    let mut moved = FxHashMap::with_capacity_and_hasher(leaves.len() / 2, Default::default());
+    drop(leaves);
+    // Sized for what was found (the chains add a few centres each): a table sized for half
+    // the leaves was mostly empty, but the kernel still cleared most of its pages.
+    let found = parts.iter().flatten().filter(|(_, p)| p.is_some()).count();
+    let chained = parts.iter().flatten().count() - found;
+    let mut moved = FxHashMap::with_capacity_and_hasher(found + 8 * chained, Default::default());
     let mut mc3_keys = Vec::new();
     for (key, p) in parts.into_iter().flatten() {
         match p {

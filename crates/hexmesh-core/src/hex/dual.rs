@@ -58,6 +58,29 @@ pub fn extract_patched(
     extract_all(h, placement, moved, patch)
 }
 
+/// A centre's place asked after the table of moved centres, before the lattice centre
+/// (`extract_relocated`).
+pub type Relocate<'a> = &'a (dyn Fn(Key) -> Option<Point> + Sync);
+
+/// `extract_patched` in `Relocated` placement, with the centres that `moved` does not hold
+/// placed by `relocate` where it gives a place: the whole dual without a table of every
+/// relocated centre (`extended::chain_relocations`), the places computed as the vertices are
+/// met (over the threads of the split descent).
+pub fn extract_relocated(
+    h: &Hierarchy,
+    moved: &FxHashMap<Key, Point>,
+    relocate: Relocate<'_>,
+    patch: &Patch,
+) -> (TriMesh, Vec<Key>) {
+    extract_all_from(
+        h,
+        (Placement::Relocated, Some(relocate)),
+        moved,
+        patch,
+        PARALLEL_EXTRACT_MIN,
+    )
+}
+
 /// The triangles of `extract_moved` that lie in lattice triangles touching `region` (with
 /// the vertices they use): the part of the dual a local change can have altered, found by
 /// descending only into the lattice triangles that touch the region.
@@ -128,21 +151,23 @@ fn extract_all(
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
 ) -> (TriMesh, Vec<Key>) {
-    extract_all_from(h, placement, moved, patch, PARALLEL_EXTRACT_MIN)
+    extract_all_from(h, (placement, None), moved, patch, PARALLEL_EXTRACT_MIN)
 }
 
-/// `extract_all`, split over threads from `min_leaves` full leaves on.
+/// `extract_all`, split over threads from `min_leaves` full leaves on, with the centres
+/// `moved` does not hold placed by the `Relocate` given, if any (`extract_relocated`).
 fn extract_all_from(
     h: &Hierarchy,
-    placement: Placement,
+    (placement, relocate): (Placement, Option<Relocate<'_>>),
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
     min_leaves: usize,
 ) -> (TriMesh, Vec<Key>) {
-    if h.full_leaves < min_leaves {
-        return extract_where(h, placement, moved, patch, true, |_| true);
-    }
     let mut b = Builder::new(h, placement, moved, &patch.dropped, true);
+    b.relocate = relocate;
+    if h.full_leaves < min_leaves {
+        return emit_where(h, b, patch, |_| true);
+    }
     let items = expand(h, root_triangles(h), PARALLEL_SUBTREES);
     // The subtrees go in waves, each split over the threads and absorbed before the next
     // starts: only one wave's parts are alive beside the growing builder (with all parts at
@@ -328,6 +353,8 @@ struct Builder<'a> {
     /// Places asked before `moved` (`extract_region_patched`).
     placed: Option<&'a FxHashMap<Key, Point>>,
     moved: &'a FxHashMap<Key, Point>,
+    /// Places asked after `moved` (`extract_relocated`).
+    relocate: Option<Relocate<'a>>,
     /// Centres whose triangles the patch replaces.
     dropped: &'a FxHashSet<Key>,
     /// Every dropped centre is marked `DROPPED` in `index` (none is a vertex yet).
@@ -401,6 +428,7 @@ impl<'a> Builder<'a> {
             h,
             placed: None,
             moved,
+            relocate: None,
             dropped,
             marked,
             keys,
@@ -430,8 +458,11 @@ impl<'a> Builder<'a> {
         if let Some(&p) = self.placed.and_then(|m| m.get(&key)) {
             return p;
         }
-        match self.moved.get(&key) {
-            Some(&p) => p,
+        if let Some(&p) = self.moved.get(&key) {
+            return p;
+        }
+        match self.relocate.and_then(|f| f(key)) {
+            Some(p) => p,
             None => self.h.lattice.center(key),
         }
     }
@@ -509,16 +540,13 @@ impl<'a> Builder<'a> {
         let map: Vec<u32> = part
             .vertices
             .iter()
-            .map(|&key| match self.index.get(&key) {
+            .map(|&(key, p)| match self.index.get(&key) {
                 Some(v) => {
                     debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
                     self.used[v as usize] = true;
                     v
                 }
-                None => {
-                    let p = self.place(key);
-                    self.push_vertex(key, p)
-                }
+                None => self.push_vertex(key, p),
             })
             .collect();
         self.triangles.reserve(part.triangles.len());
@@ -605,12 +633,11 @@ fn point_at(h: &Hierarchy, key: Key) -> Option<u32> {
 const LOCAL: u32 = 1 << 31;
 
 /// The triangles one thread of `extract_all` emits for its subtrees, with the vertices it met
-/// that the builder's index did not hold, in the order it met them (their canonical keys: the
-/// builder places the new ones when it absorbs the part).
+/// that the builder's index did not hold, in the order it met them, with their places.
 #[derive(Default)]
 struct Part {
     index: KeyIndex,
-    vertices: Vec<Key>,
+    vertices: Vec<(Key, Point)>,
     triangles: Vec<[u32; 3]>,
 }
 
@@ -626,7 +653,7 @@ impl Part {
                 Some(v) => v,
                 None => {
                     let v = LOCAL | self.vertices.len() as u32;
-                    self.vertices.push(keys[m]);
+                    self.vertices.push((keys[m], base.place(keys[m])));
                     self.index.insert(keys[m], v);
                     v
                 }
@@ -648,7 +675,7 @@ pub fn first_inverted(mesh: &TriMesh) -> Option<usize> {
 mod tests {
     use super::*;
     use crate::hex::classify::rings;
-    use crate::hex::extended::{mesh_extended, relocations};
+    use crate::hex::extended::{chain_relocations, mesh_extended, relocated, relocations};
     use crate::{Params, Pslg};
 
     #[test]
@@ -678,7 +705,7 @@ mod tests {
         );
         for placement in [Placement::Relocated, Placement::Plain] {
             let serial = extract_where(h, placement, &moved, &patch, true, |_| true);
-            let split = extract_all_from(h, placement, &moved, &patch, 0);
+            let split = extract_all_from(h, (placement, None), &moved, &patch, 0);
             assert!(!serial.0.triangles.is_empty());
             assert_eq!(serial.0.triangles, split.0.triangles, "{placement:?}");
             assert_eq!(serial.1, split.1, "{placement:?}");
@@ -689,6 +716,35 @@ mod tests {
                     .collect()
             };
             assert_eq!(bits(&serial.0), bits(&split.0), "{placement:?}");
+        }
+        // The relocated centres computed as the dual meets them, with only the chains' in a
+        // table, give the same dual as the table of every relocated centre, serial or split.
+        let r = rings(h);
+        let (chained, chain_patch) = chain_relocations(h, &r);
+        assert!(
+            chained.len() < moved.len(),
+            "the table holds the chains only"
+        );
+        assert_eq!(chain_patch.triangles, patch.triangles);
+        let relocate = |k: Key| relocated(h, &r, k);
+        let table = extract_where(h, Placement::Relocated, &moved, &patch, true, |_| true);
+        for min in [0, usize::MAX] {
+            let lazy = extract_all_from(
+                h,
+                (Placement::Relocated, Some(&relocate)),
+                &chained,
+                &chain_patch,
+                min,
+            );
+            assert_eq!(table.0.triangles, lazy.0.triangles, "split from {min}");
+            assert_eq!(table.1, lazy.1, "split from {min}");
+            let bits = |m: &TriMesh| -> Vec<u64> {
+                m.vertices
+                    .iter()
+                    .flat_map(|p| [p[0].to_bits(), p[1].to_bits()])
+                    .collect()
+            };
+            assert_eq!(bits(&table.0), bits(&lazy.0), "split from {min}");
         }
     }
 }

@@ -3,9 +3,9 @@
 //! the dual rebuilt around MOVED_CENTER_3 hexagons (`mc3`).
 
 use crate::geom::Point;
-use crate::hex::classify::{classify, Class, Rings, Role};
+use crate::hex::classify::{classify, fin_class, fin_mask, Class, Rings, Role};
 use crate::hex::lattice::{FxHashMap, Key};
-use crate::hex::mc3::{self, Patch};
+use crate::hex::mc3::{self, Chain, Patch};
 use crate::hex::parallel::in_parallel;
 use crate::hex::subdivision::Hierarchy;
 
@@ -59,26 +59,50 @@ pub fn relocations_of(
     (moved, patch)
 }
 
-/// `relocations` of the whole subdivision without its table of every moved centre: only the
-/// centres the MOVED_CENTER_3 chains place (`mc3::build`) are in the table, with the patch;
-/// every other relocated centre is `relocated`, computed where the dual asks for it. The
-/// dual looks the table up first, as the chains' places replace the others in
-/// `relocations`, so it gets the same places. At plane-100k the whole table was about 15
-/// bytes an output triangle at the peak.
-pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch) {
+/// `relocations` of the whole subdivision without its table of every moved centre, and
+/// without the patch's triangles: only the centres the MOVED_CENTER_3 chains place
+/// (`mc3::build`) are in the table, every other relocated centre is `relocated`, computed
+/// where the dual asks for it, and the chains are returned for `chain_triangles` to give
+/// their triangles when the dual emits them. The dual looks the table up first, as the
+/// chains' places replace the others in `relocations`, so it gets the same places, and the
+/// triangles come chain by chain in the order of `relocations`' patch. At plane-100k the
+/// whole table and the patch's triangles were about 15 and 6 bytes an output triangle at the
+/// peak.
+pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch, Vec<Chain>) {
     let leaves: Vec<Key> = h.full_leaves_unordered();
     let parts = in_parallel(&leaves, |chunk| {
-        let chained = |&key: &Key| matches!(relocation(h, r, key), Relocation::Chain);
+        // Only a hexagon with fins can be MOVED_CENTER_3 (`classify` reads its fins first).
+        let chained = |&key: &Key| {
+            let mask = fin_mask(h, key);
+            mask != 0 && fin_class(mask).0 == Class::MovedCenter3
+        };
         chunk.iter().copied().filter(chained).collect::<Vec<Key>>()
     });
     drop(leaves);
     let mc3_keys: Vec<Key> = parts.into_iter().flatten().collect();
     let mut moved = FxHashMap::default();
     let mut patch = Patch::default();
-    for chain in mc3::chains(h, r, &mc3_keys) {
+    let chains = mc3::chains(h, r, &mc3_keys);
+    for &chain in &chains {
         mc3::build(h, r, chain, &mut moved, &mut patch);
+        // Given again, chain by chain, by `chain_triangles`.
+        patch.triangles.clear();
     }
-    (moved, patch)
+    (moved, patch, chains)
+}
+
+/// The triangles `mc3::build` makes for each of `chains` in turn, given to `emit` in order
+/// (`chain_relocations`): `mc3::build` only adds to the table and the patch it is given, so a
+/// chain's triangles do not depend on the chains before it.
+pub fn chain_triangles(h: &Hierarchy, r: &Rings, chains: &[Chain], emit: &mut dyn FnMut([Key; 3])) {
+    let mut scratch = FxHashMap::default();
+    let mut patch = Patch::default();
+    for &chain in chains {
+        mc3::build(h, r, chain, &mut scratch, &mut patch);
+        for t in patch.triangles.drain(..) {
+            emit(t);
+        }
+    }
 }
 
 /// Where Sec. 5.4 puts the dual vertex with canonical key `key`, when it is the centre of a

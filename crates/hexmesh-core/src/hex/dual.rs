@@ -180,7 +180,14 @@ fn extract_all_from(
     if h.full_leaves < min_leaves {
         descend(h, root_triangles(h), &|_| true, &mut |tri| b.emit(tri));
     } else {
-        b = emit_split(h, b);
+        // The centres the patch's triangles use: the parts' vertices among them go into the
+        // index, where `emit_patch` finds them.
+        let mut wanted: FxHashSet<Key> = FxHashSet::default();
+        wanted.extend(patch.triangles.iter().flatten().map(|c| c.canonical()));
+        if let Some(later) = later {
+            later(&mut |tri| wanted.extend(tri.map(|c| c.canonical())));
+        }
+        b = emit_split(h, b, &wanted);
     }
     for tri in &patch.triangles {
         b.emit_patch(*tri);
@@ -191,9 +198,22 @@ fn extract_all_from(
     b.finish()
 }
 
-/// The descent of `extract_all_from` over threads, absorbed into `b` in emission order.
-fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>) -> Builder<'a> {
+/// The descent of `extract_all_from` over threads, absorbed into `b` in emission order. Only
+/// the vertices two subtrees can share, on the lattice lines of the finest subtree's level
+/// (`on_lines`), and those the patch will ask for (`wanted`), go into the builder's index; the
+/// others lie inside one subtree, whose part numbers them alone (at plane-100k an index of
+/// every vertex was about 14 bytes an output triangle).
+fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>, wanted: &FxHashSet<Key>) -> Builder<'a> {
     let items = expand(h, root_triangles(h), PARALLEL_SUBTREES);
+    let finest = items
+        .iter()
+        .flat_map(|item| match item {
+            Item::Emit(tri) => *tri,
+            Item::Descend(tri) => tri.map(|c| c.0),
+        })
+        .map(|c| c.k)
+        .max()
+        .unwrap_or(0);
     // The subtrees go in waves, each split over the threads and absorbed before the next
     // starts: only one wave's parts are alive beside the growing builder (with all parts at
     // once, the last one alone was about 23 bytes a triangle beside the whole builder at
@@ -224,7 +244,7 @@ fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>) -> Builder<'a> {
             part
         });
         for part in parts {
-            b.absorb(part);
+            b.absorb(part, |key| on_lines(key, finest) || wanted.contains(&key));
         }
     }
     b
@@ -361,6 +381,18 @@ fn expand(h: &Hierarchy, mut stack: Vec<StateTri>, want: usize) -> Vec<Item> {
     }
 }
 
+/// Whether the cell `key` lies on a line of the lattice of level `k`, that is on an edge of
+/// a lattice triangle of that level (every cell of level `k` or coarser does): the lines run
+/// along the directions (1, 0), (0, 1) and (-1, 1), where j, i or i + j is a multiple of
+/// 2^(key.k - k).
+fn on_lines(key: Key, k: u8) -> bool {
+    if key.k <= k {
+        return true;
+    }
+    let m = (1i64 << (key.k - k)) - 1;
+    key.i & m == 0 || key.j & m == 0 || (key.i + key.j) & m == 0
+}
+
 /// The cell at the midpoint of two adjacent cells of the same level.
 fn midpoint(a: Key, b: Key) -> Key {
     Key::new(a.k + 1, a.i + b.i, a.j + b.j)
@@ -406,7 +438,9 @@ impl<'a> Builder<'a> {
         // rehashing a table of millions of entries. A part of the dual (`whole` false) is
         // small: its tables grow as needed.
         let expected = if whole { h.full_leaves } else { 0 } + h.points.len();
-        let mut index = KeyIndex::with_capacity(expected);
+        // The dual split over threads indexes few of its vertices (`emit_split`).
+        let split = whole && h.full_leaves >= PARALLEL_EXTRACT_MIN;
+        let mut index = KeyIndex::with_capacity(if split { h.points.len() } else { expected });
         // The vectors get a quarter more: the dual has more vertices than full leaves (at
         // plane-100k its triangles outgrew twice `expected`), and reserved room that is never
         // written costs no memory.
@@ -548,27 +582,41 @@ impl<'a> Builder<'a> {
 
     /// A new vertex for `key` at `p`.
     fn push_vertex(&mut self, key: Key, p: Point) -> u32 {
-        let v = self.vertices.len() as u32;
-        self.vertices.push(p);
-        self.keys.push(key);
-        self.used.push(true);
+        let v = self.push_unindexed(key, p);
         self.index.insert(key, v);
         v
     }
 
+    /// `push_vertex` of a vertex no later lookup asks for (`absorb`).
+    fn push_unindexed(&mut self, key: Key, p: Point) -> u32 {
+        let v = self.vertices.len() as u32;
+        self.vertices.push(p);
+        self.keys.push(key);
+        self.used.push(true);
+        v
+    }
+
     /// Appends the triangles of `part` (the next part of the recursion in emission order),
-    /// numbering its vertices that are new here in the order the part met them.
-    fn absorb(&mut self, part: Part) {
+    /// numbering its vertices that are new here in the order the part met them. Only the
+    /// vertices for which `indexed` holds are looked up in the index and added to it: the
+    /// others no other part meets (`emit_split`).
+    fn absorb(&mut self, part: Part, indexed: impl Fn(Key) -> bool) {
         let map: Vec<u32> = part
             .vertices
             .iter()
-            .map(|&(key, p)| match self.index.get(&key) {
-                Some(v) => {
-                    debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
-                    self.used[v as usize] = true;
-                    v
+            .map(|&(key, p)| {
+                if !indexed(key) {
+                    debug_assert!(self.index.get(&key).is_none(), "{key:?} met twice");
+                    return self.push_unindexed(key, p);
                 }
-                None => self.push_vertex(key, p),
+                match self.index.get(&key) {
+                    Some(v) => {
+                        debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
+                        self.used[v as usize] = true;
+                        v
+                    }
+                    None => self.push_vertex(key, p),
+                }
             })
             .collect();
         self.triangles.reserve(part.triangles.len());
@@ -700,7 +748,36 @@ mod tests {
     use crate::hex::extended::{
         chain_relocations, chain_triangles, mesh_extended, relocated, relocations,
     };
+    use crate::hex::key::DIRS;
     use crate::{Params, Pslg};
+
+    #[test]
+    fn a_cell_is_on_the_lines_of_a_level_exactly_when_it_lies_on_an_edge_of_its_triangles() {
+        // Level 1 against level 4 (t = 8), every cell of a window, against the edges of the
+        // level-1 triangles around it walked one by one.
+        let (k, fine, t) = (1u8, 4u8, 8i64);
+        let on_an_edge = |i: i64, j: i64| {
+            (-4..4i64).any(|a| {
+                (-4..4i64).any(|b| {
+                    let (pi, pj) = (t * a, t * b);
+                    DIRS[..3].iter().any(|&(di, dj)| {
+                        // (i, j) = P + λ·t·d with 0 ≤ λ ≤ 1.
+                        (0..=t).any(|l| (pi + l * di, pj + l * dj) == (i, j))
+                    })
+                })
+            })
+        };
+        let mut on = 0;
+        for i in -12..12 {
+            for j in -12..12 {
+                let key = Key::new(fine, i, j);
+                assert_eq!(on_lines(key, k), on_an_edge(i, j), "{key:?}");
+                on += on_lines(key, k) as usize;
+            }
+        }
+        assert!(on > 0 && on < 24 * 24);
+        assert!(on_lines(Key::new(1, 1, 0), 1) && on_lines(Key::ROOT, 2));
+    }
 
     #[test]
     fn the_dual_split_over_threads_is_the_serial_dual_byte_for_byte() {

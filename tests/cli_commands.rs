@@ -488,7 +488,7 @@ fn the_hex_summary_states_near_segment_figures_apart_on_a_domain() {
     assert!(
         shown.contains("its bounds hold away from the segments")
             && shown.contains("triangles touching a segment have angles")
-            && shown.contains("(measured, not promised)"),
+            && shown.contains("(promised 30-120 deg but at input corners sharper than 30 deg"),
         "{shown}"
     );
     let prefix = temp("plane-100-hex-summary");

@@ -314,3 +314,74 @@ fn messages_number_vertices_triangles_and_input_items_as_the_files_read_do() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn hex_fails_a_domain_mesh_with_29_9_degrees_at_a_segment_or_a_split_sharp_corner() {
+    let rect = fixture("near_segment_29_9_input.poly");
+    let wedge = fixture("sharp_corner_input.poly");
+    let apex = fixture("near_segment_120_1_input.poly");
+    let row = "FAIL min angle near segments (deg)";
+    let hex = ["--bounds", "hex", "--input"];
+    assert_caught("near_segment_29_9", &[&hex[..], &[&rect]].concat(), row);
+    assert_caught("sharp_corner_split", &[&hex[..], &[&wedge]].concat(), row);
+    assert_caught(
+        "near_segment_120_1",
+        &[&hex[..], &[&apex]].concat(),
+        "FAIL max angle near segments (deg)",
+    );
+    // The same 10° corner taken whole is the input's, and passes.
+    let (code, text) = verify("sharp_corner_whole", &[&hex[..], &[&wedge]].concat());
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("1 whole sharp input corner left out"),
+        "{text}"
+    );
+}
+
+/// `verify --max-area/--max-edge` checks from outside what `mesh --max-area` asked: hex's
+/// mesh of pslg-holes under 0.01 passes at 0.01 and fails a limit a hundredth of it, and a
+/// limit that is not a positive number exits 2.
+#[test]
+fn verify_checks_the_size_limits_mesh_was_given() {
+    let dir = std::env::temp_dir().join(format!("hexmesh-verify-size-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prefix = dir.join("holes").to_string_lossy().into_owned();
+    let out = hexmesh(&[
+        "mesh",
+        "pslg-holes",
+        "--mesher",
+        "hex",
+        "--max-area",
+        "0.01",
+        "-o",
+        &prefix,
+    ]);
+    assert!(out.status.success(), "{out:?}");
+    let run = |extra: &[&str]| {
+        let mut args = vec!["verify", prefix.as_str(), "--input", "pslg-holes"];
+        args.extend_from_slice(extra);
+        let out = hexmesh(&args);
+        let text = String::from_utf8_lossy(&out.stdout).to_string()
+            + &String::from_utf8_lossy(&out.stderr);
+        (out.status.code().expect("exit code"), text)
+    };
+    let (code, text) = run(&["--bounds", "hex", "--max-area", "0.01"]);
+    assert_eq!(code, 0, "{text}");
+    assert!(
+        text.contains("triangle area / its limit [--max-area 0.01"),
+        "{text}"
+    );
+    let (code, text) = run(&["--bounds", "hex", "--max-area", "0.0001"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("FAIL triangle area / its limit"), "{text}");
+    let (code, text) = run(&["--max-edge", "0.001"]);
+    assert_eq!(code, 1, "{text}");
+    assert!(text.contains("FAIL longest edge / its limit"), "{text}");
+    let (code, text) = run(&["--max-area", "0"]);
+    assert_eq!(code, 2, "{text}");
+    assert!(
+        text.contains("--max-area must be a positive number"),
+        "{text}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -327,21 +327,27 @@ proptest! {
     }
 }
 
-/// Every configuration a test or the proptest found, kept under tests/fixtures/hex/pslg-*.poly
-/// (each file's comment says what it found), meshes valid and conforming with the interior
-/// bounds, and the refinement stays bounded.
-#[test]
-fn pslg_fixtures_mesh_valid_and_conforming() {
+/// The .poly files under tests/fixtures/hex whose names start with `prefix`, sorted.
+fn hex_fixtures(prefix: &str) -> Vec<std::path::PathBuf> {
     let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fixtures/hex");
     let mut files: Vec<_> = std::fs::read_dir(&dir)
         .expect("fixture directory")
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| {
             let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
-            name.is_some_and(|n| n.starts_with("pslg-") && n.ends_with(".poly"))
+            name.is_some_and(|n| n.starts_with(prefix) && n.ends_with(".poly"))
         })
         .collect();
     files.sort();
+    files
+}
+
+/// Every configuration a test or the proptest found, kept under tests/fixtures/hex/pslg-*.poly
+/// (each file's comment says what it found), meshes valid and conforming with the interior
+/// bounds, and the refinement stays bounded.
+#[test]
+fn pslg_fixtures_mesh_valid_and_conforming() {
+    let files = hex_fixtures("pslg-");
     assert!(files.len() >= 2, "{files:?}");
     for path in files {
         let name = path
@@ -430,8 +436,8 @@ fn nearly_parallel_segments_and_a_point_beside_a_segment_mesh() {
 /// (pslg-wedge-5's 5° corner), and the whole mesh is constrained Delaunay: no exact
 /// empty-circle violation anywhere, on the segments or off them.
 #[test]
-fn the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_circle_violation() {
-    for &name in datasets::PSLG_EXAMPLES {
+fn imr_and_the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_circle_violation() {
+    for name in std::iter::once("imr").chain(datasets::PSLG_EXAMPLES.iter().copied()) {
         let input = datasets::by_name(name).expect("example");
         let run = mesh_and_check(name, &input);
         let within = Bounds {
@@ -450,6 +456,56 @@ fn the_pslg_examples_keep_30_to_120_degrees_near_segments_and_no_empty_circle_vi
         let d = verdict(&run.mesh, None, Bounds::named("delaunay").ok().as_ref());
         assert_eq!(d.metrics.delaunay_violations, 0, "{name}: empty-circle");
         assert!(run.stats.band_moved + run.stats.band_removed + run.stats.band_inserted > 0);
+    }
+}
+
+/// Fuzz case 12 of seed 20261123 (tests/fixtures/hex/domains-fuzz-seed20261123-case12-...):
+/// an interior point 0.003 from a segment, in the hexagon the segment cut. hex kept its
+/// interior bounds but had 13° beside the segment; the rule that subdivides a crossed hexagon
+/// holding a point foreign to its segments, and d_min measured between features, give a mesh
+/// that keeps the whole promise.
+#[test]
+fn an_interior_point_beside_a_segment_keeps_the_whole_hex_promise() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(
+        "tests/fixtures/hex/domains-fuzz-seed20261123-case12-interior-point-beside-segment.poly",
+    );
+    let input = hexmesh::io::read_input(&path).expect("the fixture reads");
+    let run = mesh_and_check("case 12", &input);
+    let hex = hexmesh::registry::bounds("hex").expect("hex");
+    let v = verdict(&run.mesh, Some(&input), Some(&hex));
+    assert!(v.passed(), "{v}");
+    let gap = hexmesh::quality::feature_gap(&input).expect("gap");
+    assert_eq!(gap.other, hexmesh::quality::Feature::Segment(2));
+    assert!(gap.distance < 0.003, "{}", gap.distance);
+}
+
+/// Every input the domain fuzz found that broke hex (tests/fixtures/hex/domains-fuzz-*.poly,
+/// the first line of each says what it found) meshes within the fuzz's vertex budget and
+/// keeps the whole hex promise. Cases 23 and 78 are the level wave of the Sec. 7.2 regularity
+/// rules along the segments (the budget ran out; 1.7 million triangles): case 78, one segment
+/// 3.4e-4 long in a polygon of span 2, now takes a few thousand triangles.
+#[test]
+fn domain_fuzz_fixtures_keep_the_whole_hex_promise_within_the_fuzz_budget() {
+    let files = hex_fixtures("domains-fuzz-");
+    assert!(files.len() >= 4, "{files:?}");
+    let hex = hexmesh::registry::bounds("hex").expect("hex");
+    for path in files {
+        let name = path
+            .file_name()
+            .map_or(String::new(), |n| n.to_string_lossy().into_owned());
+        let input = hexmesh::io::read_input(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let mut params = Params::default();
+        params.budget.max_vertices = Some(500_000);
+        let run = mesh_pslg(&input, &params).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let v = verdict(&run.mesh, Some(&input), Some(&hex));
+        assert!(v.passed(), "{name}: {v}");
+        if name.contains("case78-") {
+            assert!(
+                run.mesh.triangles.len() < 20_000,
+                "{name}: {} triangles",
+                run.mesh.triangles.len()
+            );
+        }
     }
 }
 

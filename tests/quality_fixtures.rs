@@ -249,7 +249,7 @@ fn every_fixture_is_readable_and_checked_without_panicking() {
         })
         .collect();
     prefixes.sort();
-    assert_eq!(prefixes.len(), 19, "{prefixes:?}");
+    assert_eq!(prefixes.len(), 23, "{prefixes:?}");
     for p in prefixes {
         let mesh = read_mesh(&p);
         for name in ["hex", "valid"] {
@@ -397,4 +397,52 @@ fn spills_past_segments_is_caught_when_conformity_is_asked_for() {
         ..mesh
     };
     assert_eq!(validate(&l, Some(&input), &conforming), vec![]);
+}
+
+/// `hex`'s verdict on a hand-made mesh of a domain, with its input.
+fn hex_on_domain(prefix: &str, input: &str) -> hexmesh::quality::Verdict {
+    let mesh = read_mesh(prefix);
+    let input = hexmesh::io::read_input(&fixture(input)).expect("input");
+    let hex = hexmesh::registry::bounds("hex").expect("hex");
+    verdict(&mesh, Some(&input), Some(&hex))
+}
+
+/// The rows of a verdict that failed, by name.
+fn failed_rows(v: &hexmesh::quality::Verdict) -> Vec<&str> {
+    v.failed().map(|c| c.what.as_str()).collect()
+}
+
+#[test]
+fn a_29_9_degree_angle_at_a_segment_fails_only_the_hex_near_segment_minimum() {
+    let v = hex_on_domain("near_segment_29_9", "near_segment_29_9_input.poly");
+    assert_eq!(failed_rows(&v), ["min angle near segments (deg)"], "{v}");
+    let row = v
+        .checks
+        .iter()
+        .find(|c| c.status == Status::Fail)
+        .expect("row");
+    let worst = row.worst.expect("worst");
+    assert!((worst.value - 29.9).abs() < 1e-9, "{}", worst.value);
+    assert_eq!(row.limit, 30.0);
+}
+
+#[test]
+fn a_split_sharp_corner_fails_the_hex_near_segment_minimum_and_the_whole_corner_passes() {
+    let split = hex_on_domain("sharp_corner_split", "sharp_corner_input.poly");
+    assert_eq!(
+        failed_rows(&split),
+        ["min angle near segments (deg)"],
+        "{split}"
+    );
+    let worst = split.checks.iter().find_map(|c| c.worst).expect("worst");
+    assert!((worst.value - 5.0).abs() < 1e-6, "{}", worst.value);
+    let whole = hex_on_domain("sharp_corner_whole", "sharp_corner_input.poly");
+    assert!(whole.passed(), "{whole}");
+    assert_eq!(whole.metrics.min_angle.map(|w| w.value.round()), Some(10.0));
+}
+
+#[test]
+fn a_120_1_degree_angle_at_a_segment_fails_only_the_hex_near_segment_maximum() {
+    let v = hex_on_domain("near_segment_120_1", "near_segment_120_1_input.poly");
+    assert_eq!(failed_rows(&v), ["max angle near segments (deg)"], "{v}");
 }

@@ -26,7 +26,11 @@ fn strip() -> (TriMesh, Vec<[f64; 2]>) {
 /// others are 45°/45°/90°, and the two cells of the middle row away from the frame touch no
 /// segment.
 fn framed_grid() -> (TriMesh, Pslg) {
-    let xs = [0.0, 0.5, 1.5, 2.5, 3.0];
+    framed_grid_with([0.0, 0.5, 1.5, 2.5, 3.0])
+}
+
+/// The framed 4 × 3 grid of cells with columns at `xs`.
+fn framed_grid_with(xs: [f64; 5]) -> (TriMesh, Pslg) {
     let ys = [0.0, 1.0, 2.0, 3.0];
     let vertices: Vec<[f64; 2]> = ys
         .iter()
@@ -64,12 +68,22 @@ fn framed_grid() -> (TriMesh, Pslg) {
     )
 }
 
+/// The names of the rows of `v` that failed.
+fn failed(v: &hexmesh::quality::Verdict) -> Vec<&str> {
+    v.failed().map(|c| c.what.as_str()).collect()
+}
+
 #[test]
-fn hex_bounds_hold_away_from_segments_on_a_pslg() {
+fn hex_holds_its_interior_bounds_away_from_segments_and_30_degrees_beside_them() {
     let (mesh, pslg) = framed_grid();
     let hex = hexmesh::registry::bounds("hex").expect("hex");
     let out = verdict(&mesh, Some(&pslg), Some(&hex));
-    assert!(out.passed(), "{out}");
+    // The 26.6° triangles touch the frame: the interior rows pass, the near-segment row fails.
+    assert_eq!(failed(&out), vec!["min angle near segments (deg)"], "{out}");
+    // With columns of equal width every triangle is 45°/45°/90°: passed.
+    let (square, square_input) = framed_grid_with([0.0, 1.0, 2.0, 3.0, 4.0]);
+    let whole = verdict(&square, Some(&square_input), Some(&hex));
+    assert!(whole.passed(), "{whole}");
     let split = out.split.as_ref().expect("a PSLG gets the split figures");
     // Cells (1, 1) and (2, 1) are the triangles 10, 11, 12, 13; everything else touches the frame.
     let near: Vec<usize> = (0..24).filter(|t| !(10..14).contains(t)).collect();
@@ -86,14 +100,8 @@ fn hex_bounds_hold_away_from_segments_on_a_pslg() {
     let points_only = Pslg::from_points(pslg.points);
     let out = verdict(&mesh, Some(&points_only), Some(&hex));
     assert!(!out.passed());
-    let failed: Vec<&str> = out
-        .checks
-        .iter()
-        .filter(|c| c.status == Status::Fail)
-        .map(|c| c.what.as_str())
-        .collect();
     assert_eq!(
-        failed,
+        failed(&out),
         vec!["min angle (deg)", "radius ratio R/(2r)"],
         "{out}"
     );

@@ -80,6 +80,7 @@ fn every_segment_mesher_gets_a_checked_row_for_every_example_and_the_readme_a_se
         for c in [
             "validity_violations",
             "conformity_violations",
+            "near_obtuse_angles",
             "covered_area",
         ] {
             assert!(!r[c].is_empty(), "{what}: {c} is empty");
@@ -90,6 +91,13 @@ fn every_segment_mesher_gets_a_checked_row_for_every_example_and_the_readme_a_se
                 (area - e.area).abs() < 1e-9 * e.area,
                 "{what}: covers {area}"
             );
+        }
+        // The count of near angles above 90° agrees with the largest near angle.
+        if num(r, "near_max_angle") <= 90.0 {
+            assert_eq!(num(r, "near_obtuse_angles"), 0.0, "{what}");
+        }
+        if num(r, "near_max_angle") > 90.0 + 1e-6 {
+            assert!(num(r, "near_obtuse_angles") >= 1.0, "{what}");
         }
         if r["shape"] == "pslg-wedge-5" {
             // Every triangulation of the wedge has a triangle in its 5° corner.
@@ -127,12 +135,20 @@ fn every_segment_mesher_gets_a_checked_row_for_every_example_and_the_readme_a_se
         let lines = readme
             .lines()
             .filter(|l| l.starts_with(&format!("| {m} |")) || l.starts_with(&format!("| {m} ⚠ |")))
+            .filter(|l| !l.contains("!["))
             .count();
         assert_eq!(
             lines,
             PSLG_EXAMPLES.len(),
             "{m}: one table line per example"
         );
+        // Every segment mesher's mesh of pslg-holes is pictured.
+        let file = format!("mesh-pslg-holes-{m}.svg");
+        assert!(
+            readme.contains(&format!("| {m} | ![{m} on pslg-holes]({file}) |")),
+            "{m}: picture of pslg-holes"
+        );
+        assert!(out.join(&file).is_file(), "{file}");
     }
     std::fs::remove_dir_all(&out).unwrap();
 }

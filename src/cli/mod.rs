@@ -229,6 +229,13 @@ struct VerifyArgs {
     /// as segments after the file's), as `mesh --convex-hull` meshed it.
     #[arg(long)]
     convex_hull: bool,
+    /// Check every triangle's area against this limit (and, with --input, each region's own
+    /// limit), as `mesh --max-area` asked; with a mesher's --bounds, its promise under it.
+    #[arg(long)]
+    max_area: Option<f64>,
+    /// Check every edge's length against this limit, as `mesh --max-edge` asked.
+    #[arg(long, value_name = "L")]
+    max_edge: Option<f64>,
 }
 
 /// Runs the command line; `main` returns this.
@@ -350,20 +357,12 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         .map(|f| crate::io::Format::parse(f))
         .collect::<Result<Vec<_>>>()?;
     refuse_to_overwrite_input(args, &formats)?;
-    for (what, v) in [
+    positive(&[
         ("--min-angle", args.min_angle),
         ("--max-area", args.max_area),
         ("--max-edge", args.max_edge),
         ("--max-rounding", args.max_rounding),
-    ] {
-        if let Some(v) = v {
-            if !v.is_finite() || v <= 0.0 {
-                return Err(Error::Usage(format!(
-                    "{what} must be a positive number, not {v}"
-                )));
-            }
-        }
-    }
+    ])?;
     if args.hexagons.is_some() && !matches!(mesher.name(), "hex-simple" | "hex") {
         return Err(Error::Usage(format!(
             "--hexagons draws the hexagon subdivision of hex-simple or hex, not of {}",
@@ -427,18 +426,26 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         run.elapsed.as_secs_f64(),
         mesher.settings(&params)
     );
-    // On a domain, a promise kept away from the segments (paper 000 Sec. 7) is not the
-    // mesh's: the figures beside the segments are stated apart, as measured.
-    if input.has_segments() && mesher.promise(&params).interior_only_on_segments {
+    // On a domain, the shape bounds of a promise kept away from the segments (paper 000
+    // Sec. 7) are not the mesh's: the figures beside the segments are stated apart, with what
+    // is promised there (hex: `Bounds::near_segment_angles`) or as measured only.
+    let promise = mesher.promise(&params);
+    if input.has_segments() && promise.interior_only_on_segments {
         let band = crate::quality::on_segment_tolerance(&input);
         let split = crate::quality::metrics_split(&run.mesh, &input, band);
         let range = |m: &crate::quality::Metrics| match (&m.min_angle, &m.max_angle) {
             (Some(lo), Some(hi)) => format!("angles {:.4}-{:.4} deg", lo.value, hi.value),
             _ => "no angles".to_string(),
         };
+        let near = match promise.near_segment_angles {
+            Some((lo, hi)) => format!(
+                "promised {lo}-{hi} deg but at input corners sharper than {lo} deg, taken whole"
+            ),
+            None => "measured, not promised".to_string(),
+        };
         eprintln!(
             "{}: its bounds hold away from the segments ({} triangles, {}); the {} triangles \
-             touching a segment have {} (measured, not promised)",
+             touching a segment have {} ({near})",
             mesher.name(),
             split.interior.triangles,
             range(&split.interior),
@@ -571,11 +578,7 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
         input: input.as_ref().map_or(1, |(_, base)| *base),
     };
     let input = input.map(|(pslg, _)| pslg);
-    let bounds = args
-        .bounds
-        .as_deref()
-        .map(crate::registry::bounds)
-        .transpose()?;
+    let bounds = verify_bounds(args)?;
     let verdict =
         crate::quality::verdict(mesh, input.as_ref(), bounds.as_ref()).numbered(numbering);
     if args.json {
@@ -593,6 +596,44 @@ fn verify(args: &VerifyArgs) -> Result<ExitCode> {
     } else {
         ExitCode::from(1)
     })
+}
+
+/// A usage error naming the first option given whose value is not a positive finite number.
+fn positive(options: &[(&str, Option<f64>)]) -> Result<()> {
+    match options
+        .iter()
+        .find_map(|&(what, v)| v.filter(|v| !v.is_finite() || *v <= 0.0).map(|v| (what, v)))
+    {
+        Some((what, v)) => Err(Error::Usage(format!(
+            "{what} must be a positive number, not {v}"
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// What `verify` checks: the bounds named by --bounds, with the size limits given. A
+/// mesher's bounds under a limit are its promise for a run with that limit (hex gives up the
+/// Sec. 6.3 shortest edge under one); other bounds, or validity alone, get the limits added.
+fn verify_bounds(args: &VerifyArgs) -> Result<Option<Bounds>> {
+    positive(&[("--max-area", args.max_area), ("--max-edge", args.max_edge)])?;
+    let named = args.bounds.as_deref();
+    if args.max_area.is_none() && args.max_edge.is_none() {
+        return named.map(crate::registry::bounds).transpose();
+    }
+    if let Some(m) = named.and_then(|n| crate::registry::mesher(n).ok()) {
+        let params = Params {
+            max_area: args.max_area,
+            max_edge: args.max_edge,
+            ..Params::default()
+        };
+        let promise = m.promise(&params);
+        return Ok(Some(promise.with_size_limits(args.max_area, args.max_edge)));
+    }
+    let base = match named {
+        Some(n) => crate::registry::bounds(n)?,
+        None => Bounds::validity("valid"),
+    };
+    Ok(Some(base.with_size_limits(args.max_area, args.max_edge)))
 }
 
 /// For a file with its own node and element tags (Gmsh), the tags of the vertices and

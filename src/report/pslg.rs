@@ -13,9 +13,12 @@ use std::time::Duration;
 use serde::Serialize;
 
 use super::case::run_case;
+use super::readme::Picture;
 use super::row::one_line;
 use super::table1::seconds;
 use crate::datasets::PslgExample;
+use crate::geom::angle_deg;
+use crate::mesh::TriMesh;
 use crate::mesher::Mesher;
 use crate::quality::{Verdict, HEX};
 
@@ -40,6 +43,7 @@ pub const PSLG_COLUMNS: &[&str] = &[
     "near_triangles",
     "near_min_angle",
     "near_max_angle",
+    "near_obtuse_angles",
     "interior_triangles",
     "interior_min_angle",
     "interior_max_angle",
@@ -87,6 +91,9 @@ pub struct PslgRow {
     pub near_triangles: Option<u64>,
     pub near_min_angle: Option<f64>,
     pub near_max_angle: Option<f64>,
+    /// Angles above 90° (by more than 1e-9°) in the near triangles: the non-obtuse aim of
+    /// paper 001's border-boxes, counted.
+    pub near_obtuse_angles: Option<u64>,
     /// The other triangles, where the hexagon meshers promise their bounds.
     pub interior_triangles: Option<u64>,
     pub interior_min_angle: Option<f64>,
@@ -123,19 +130,49 @@ pub fn pslg_rows(
     (runs, timeout): (usize, Duration),
     triangle_switches: Option<&str>,
     mut progress: impl FnMut(&str),
-) -> Vec<PslgRow> {
+) -> (Vec<PslgRow>, PslgMeshes) {
     let mut rows = Vec::with_capacity(examples.len() * meshers.len());
+    let mut pictured = Vec::new();
     for e in examples {
         for m in meshers {
             progress(&format!("{} × {}", e.name, m.name()));
             let outcome = run_case(exe, *m, (e.name, &e.pslg), runs, timeout, triangle_switches);
-            rows.push(row_of(e, &outcome.row, outcome.verdict.as_ref()));
+            let verdict = outcome.verdict.as_ref();
+            rows.push(row_of(e, &outcome.row, verdict, outcome.mesh.as_ref()));
+            if PICTURED_EXAMPLES.contains(&e.name) {
+                if let Some(mesh) = outcome.mesh {
+                    pictured.push((e.name, m.name().to_string(), mesh));
+                }
+            }
         }
     }
-    rows
+    (rows, pictured)
 }
 
-fn row_of(e: &PslgExample, r: &super::Row, verdict: Option<&Verdict>) -> PslgRow {
+/// The examples whose meshes are pictured in the report, by every segment mesher.
+pub const PICTURED_EXAMPLES: &[&str] = &["pslg-holes"];
+
+/// The meshes `pslg_rows` keeps for pictures: (example, mesher, mesh).
+pub type PslgMeshes = Vec<(&'static str, String, TriMesh)>;
+
+/// The angles above 90° (by more than 1e-9°) of the triangles `near` of `mesh`.
+fn obtuse_angles(mesh: &TriMesh, near: &[usize]) -> u64 {
+    near.iter()
+        .map(|&t| {
+            let c = mesh.corners(t);
+            (0..3)
+                .filter(|&m| angle_deg(c[m], c[(m + 1) % 3], c[(m + 2) % 3]) > 90.0 + 1e-9)
+                .count() as u64
+        })
+        .sum()
+}
+
+fn row_of(
+    e: &PslgExample,
+    r: &super::Row,
+    verdict: Option<&Verdict>,
+    mesh: Option<&TriMesh>,
+) -> PslgRow {
     let split = verdict.and_then(|v| v.split.as_ref());
     let conformity = verdict.map(|v| {
         v.violations
@@ -166,6 +203,9 @@ fn row_of(e: &PslgExample, r: &super::Row, verdict: Option<&Verdict>) -> PslgRow
         near_triangles: split.map(|s| s.near.triangles as u64),
         near_min_angle: split.and_then(|s| value(s.near.min_angle)),
         near_max_angle: split.and_then(|s| value(s.near.max_angle)),
+        near_obtuse_angles: mesh
+            .zip(split)
+            .map(|(m, s)| obtuse_angles(m, &s.near_triangles)),
         interior_triangles: split.map(|s| s.interior.triangles as u64),
         interior_min_angle: split.and_then(|s| value(s.interior.min_angle)),
         interior_max_angle: split.and_then(|s| value(s.interior.max_angle)),
@@ -183,7 +223,7 @@ fn row_of(e: &PslgExample, r: &super::Row, verdict: Option<&Verdict>) -> PslgRow
 
 /// The README section: per example, the sentence saying what it tests and the table of its
 /// rows; then what `hex` kept away from the segments and every case that failed, and why.
-pub fn render(examples: &[PslgExample], rows: &[PslgRow]) -> String {
+pub fn render(examples: &[PslgExample], rows: &[PslgRow], pictures: &[Picture]) -> String {
     let mut md = String::from(
         "\n## PSLG examples: domains beside the references\n\n\
          Small planar straight-line graphs (`datasets::pslg_examples`, written as .poly files \
@@ -193,8 +233,10 @@ pub fn render(examples: &[PslgExample], rows: &[PslgRow]) -> String {
          Validity counts violations other than conformity; conformity counts segments that are \
          not chains of mesh edges and boundary edges on no segment. Near = triangles touching a \
          segment, interior = the rest: the paper promises the hexagon bounds (43.8979°–90°) \
-         only there (Sec. 7). Area is what the mesh covers, beside the domain's. \
-         Data: `pslg.csv`.\n",
+         only there (Sec. 7); beside the segments `hex` promises what Triangle's `-q30` gives \
+         (every angle in [30°, 120°] but the whole input corners sharper than 30°). The near \
+         column ends with the number of near angles above 90°. Area is what the mesh covers, \
+         beside the domain's. Data: `pslg.csv`.\n",
     );
     let blank = || "—".to_string();
     let count = |v: Option<u64>| v.map_or_else(blank, |v| v.to_string());
@@ -232,6 +274,13 @@ pub fn render(examples: &[PslgExample], rows: &[PslgRow]) -> String {
                 Some(n) => format!("{n}: {}", range(lo, hi)),
                 None => blank(),
             };
+            let near = match (r.near_triangles, r.near_obtuse_angles) {
+                (Some(n), Some(o)) if n > 0 => format!(
+                    "{}; {o} > 90°",
+                    part(r.near_triangles, r.near_min_angle, r.near_max_angle)
+                ),
+                _ => part(r.near_triangles, r.near_min_angle, r.near_max_angle),
+            };
             let bounds = match r.bounds_ok {
                 Some(true) => "ok",
                 Some(false) => "FAIL",
@@ -245,7 +294,7 @@ pub fn render(examples: &[PslgExample], rows: &[PslgRow]) -> String {
                 count(r.conformity_violations),
                 deg(r.min_angle),
                 deg(r.max_angle),
-                part(r.near_triangles, r.near_min_angle, r.near_max_angle),
+                near,
                 part(
                     r.interior_triangles,
                     r.interior_min_angle,
@@ -303,6 +352,13 @@ pub fn render(examples: &[PslgExample], rows: &[PslgRow]) -> String {
             let _ = writeln!(md, "- `{}` × `{}`: {}", r.shape, r.mesher, why.join("; "));
         }
     }
+    if !pictures.is_empty() {
+        md.push_str(
+            "\n### Meshes of the examples\n\nColoured as above, by each triangle's smallest \
+             angle; the input points are circled.\n\n",
+        );
+        super::readme::picture_tables(&mut md, pictures, "####");
+    }
     md
 }
 
@@ -313,7 +369,12 @@ mod tests {
 
     fn row(shape: &str, mesher: &str) -> PslgRow {
         let e = crate::datasets::pslg_example(shape).expect("an example");
-        let mut r = row_of(&e, &super::super::Row::empty(shape, 4, mesher, "1"), None);
+        let mut r = row_of(
+            &e,
+            &super::super::Row::empty(shape, 4, mesher, "1"),
+            None,
+            None,
+        );
         r.complete = true;
         r.triangles = Some(100);
         r.validity_violations = Some(0);
@@ -345,17 +406,48 @@ mod tests {
     fn the_section_says_what_each_shape_tests_and_tabulates_its_rows() {
         let examples = pslg_examples();
         let rows: Vec<PslgRow> = examples.iter().map(|e| row(e.name, "hex")).collect();
-        let md = render(&examples, &rows);
+        let md = render(&examples, &rows, &[]);
         for e in &examples {
             assert!(md.contains(&format!("### `{}`\n\nTests {}.", e.name, e.tests)));
         }
         assert!(
             md.contains("| hex | 100 | 0 | 0 | — | — | 40: 5.00°–120.00° | 60: 45.00°–90.00° |")
         );
+        assert!(!md.contains("Meshes of the examples"));
         assert!(md.contains(
             "- `pslg-wedge-5`: 60 interior triangles, angles 45.0000°–90.0000° (within)"
         ));
         assert!(md.contains("Every case completed and kept its mesher's promise."));
+    }
+
+    #[test]
+    fn near_obtuse_angles_are_counted_and_shown_with_the_pictures() {
+        // A right triangle (no angle above 90°) and one with a 120° angle.
+        let mesh = TriMesh {
+            vertices: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [0.0, 1.0],
+                [0.5, -0.2886751345948129],
+            ],
+            triangles: vec![[0, 1, 2], [0, 3, 1]],
+        };
+        assert_eq!(obtuse_angles(&mesh, &[0]), 0);
+        assert_eq!(obtuse_angles(&mesh, &[0, 1]), 1);
+        let examples = pslg_examples();
+        let mut r = row("pslg-holes", "hex");
+        r.near_obtuse_angles = Some(7);
+        let picture = Picture {
+            dataset: "pslg-holes".into(),
+            mesher: "hex".into(),
+            file: "mesh-pslg-holes-hex.svg".into(),
+            zoom_file: None,
+            zoom_note: String::new(),
+        };
+        let md = render(&examples, &[r], &[picture]);
+        assert!(md.contains("| 40: 5.00°–120.00°; 7 > 90° |"), "{md}");
+        assert!(md.contains("#### `pslg-holes`"));
+        assert!(md.contains("| hex | ![hex on pslg-holes](mesh-pslg-holes-hex.svg) | — |"));
     }
 
     #[test]
@@ -368,7 +460,7 @@ mod tests {
         let mut dead = row("pslg-wedge-5", "spade");
         dead.err = "timeout after 60 s".into();
         dead.triangles = None;
-        let md = render(&examples, &[bad, dead]);
+        let md = render(&examples, &[bad, dead], &[]);
         assert!(
             md.contains("angles 30.0000°–90.0000° (OUTSIDE the bounds)"),
             "{md}"

@@ -18,6 +18,26 @@ pub struct Picture {
     pub zoom_note: String,
 }
 
+/// One table of pictures per dataset, each under a heading of level `heading` (`###`).
+pub fn picture_tables(md: &mut String, pictures: &[Picture], heading: &str) {
+    for d in unique(pictures.iter().map(|p| p.dataset.as_str())) {
+        let _ = writeln!(md, "{heading} `{d}`\n");
+        md.push_str("| mesher | mesh | detail |\n| --- | --- | --- |\n");
+        for p in pictures.iter().filter(|p| p.dataset == d) {
+            let zoom = p.zoom_file.as_ref().map_or_else(
+                || "—".to_string(),
+                |z| format!("![{} zoom]({z}) {}", p.mesher, p.zoom_note),
+            );
+            let _ = writeln!(
+                md,
+                "| {} | ![{} on {d}]({}) | {zoom} |",
+                p.mesher, p.mesher, p.file
+            );
+        }
+        md.push('\n');
+    }
+}
+
 /// Everything the README links to, besides results.csv and table1.md.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Artifacts {
@@ -295,22 +315,7 @@ pub fn render(
          the line, the bowl of the R), and a dashed frame in the full picture marks the zoomed \
          window.\n\n",
     );
-    for d in unique(art.pictures.iter().map(|p| p.dataset.as_str())) {
-        let _ = writeln!(md, "### `{d}`\n");
-        md.push_str("| mesher | mesh | detail |\n| --- | --- | --- |\n");
-        for p in art.pictures.iter().filter(|p| p.dataset == d) {
-            let zoom = p.zoom_file.as_ref().map_or_else(
-                || "—".to_string(),
-                |z| format!("![{} zoom]({z}) {}", p.mesher, p.zoom_note),
-            );
-            let _ = writeln!(
-                md,
-                "| {} | ![{} on {d}]({}) | {zoom} |",
-                p.mesher, p.mesher, p.file
-            );
-        }
-        md.push('\n');
-    }
+    picture_tables(&mut md, &art.pictures, "###");
 
     md.push_str("## Scaling\n\n");
     match &art.scaling {

@@ -236,7 +236,7 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
         readme_text.push_str(&super::saalfeld::render(&saalfeld_rows));
     }
     if with_pslg {
-        let pslg_rows = progress.labelled(|step| {
+        let (pslg_rows, pslg_meshes) = progress.labelled(|step| {
             super::pslg::pslg_rows(
                 &exe,
                 &examples,
@@ -251,7 +251,17 @@ pub fn run_report(opts: &ReportOptions) -> Result<()> {
             super::pslg::PSLG_COLUMNS,
             &pslg_rows,
         )?;
-        readme_text.push_str(&super::pslg::render(&examples, &pslg_rows));
+        let mut pictures = Vec::new();
+        for (name, mesher, mesh) in &pslg_meshes {
+            let Some(e) = examples.iter().find(|e| e.name == *name) else {
+                continue;
+            };
+            match picture(&opts.out, name, mesher, &e.pslg, mesh) {
+                Ok(p) => pictures.push(p),
+                Err(e) => progress.note(&format!("picture of {name} × {mesher}: {e}")),
+            }
+        }
+        readme_text.push_str(&super::pslg::render(&examples, &pslg_rows, &pictures));
     }
     write_text(&opts.out.join("README.md"), &readme_text)?;
     progress.note(&format!(

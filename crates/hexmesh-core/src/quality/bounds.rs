@@ -48,12 +48,16 @@ const _: () = assert!(HEX.self_check_slack < super::rounding::ANGLE_FLOOR_DEG);
 
 impl HexCriteria {
     /// What a `hex` mesh is checked against: the angles, radius ratio, shortest edge and the
-    /// Delaunay property, on a PSLG away from the segments (Sec. 7).
+    /// Delaunay property, on a PSLG away from the segments (Sec. 7); there, the triangles
+    /// touching a segment keep [`NEAR_SEGMENT_ANGLES`] but at whole sharp input corners, and
+    /// the mesh is constrained Delaunay (ours, beyond the paper: `hex::pslg::band`).
     pub fn bounds(&self) -> Bounds {
         Bounds {
             max_radius_ratio: Some(self.max_radius_ratio),
             min_edge_over_dmin: Some(self.min_edge_over_dmin),
             delaunay: true,
+            near_segment_angles: Some(NEAR_SEGMENT_ANGLES),
+            constrained_delaunay: true,
             ..Bounds::angles("hex", self.min_angle, self.max_angle)
         }
     }
@@ -64,6 +68,10 @@ impl HexCriteria {
         super::rounding::AngleWindow::new(self.min_angle, self.max_angle, self.self_check_slack)
     }
 }
+
+/// The angles `hex` keeps in the triangles touching a segment, degrees: Triangle's `-q30`
+/// smallest angle and the largest angle it leaves (180° − 2·30°).
+pub const NEAR_SEGMENT_ANGLES: (f64, f64) = (30.0, 120.0);
 
 /// The descent ratio `lsb` promises (paper 003, Sec. 4): every angle at least half the
 /// smallest angle of the initial triangle it descends from.
@@ -105,6 +113,13 @@ pub struct Bounds {
     /// `min_angle` taken whole: at an input point, both of its edges along input segments
     /// from there (paper 001's exception; a split corner does not pass).
     pub whole_sharp_corners: bool,
+    /// On inputs with segments, the angles of the triangles touching a segment, which
+    /// `interior_only_on_segments` leaves out of the shape bounds: every one in [lo, hi]
+    /// degrees, but an angle at an input corner sharper than lo taken whole.
+    pub near_segment_angles: Option<(f64, f64)>,
+    /// On inputs with segments, the constrained Delaunay property over the whole mesh: every
+    /// edge that fails the exact empty-circle test lies on an input segment.
+    pub constrained_delaunay: bool,
     /// Largest allowed triangle area everywhere (the maximum area the mesher was asked for).
     pub max_area: Option<f64>,
     /// Longest allowed edge everywhere (the maximum edge length the mesher was asked for).
@@ -129,6 +144,8 @@ impl Bounds {
             conforming: true,
             interior_only_on_segments: false,
             whole_sharp_corners: false,
+            near_segment_angles: None,
+            constrained_delaunay: false,
             max_area: None,
             max_edge: None,
             region_area_limits: false,
@@ -255,6 +272,8 @@ mod tests {
         assert_eq!(hex.max_radius_ratio, Some(HEX.max_radius_ratio));
         assert!(hex.delaunay && hex.conforming);
         assert!(hex.interior_only_on_segments);
+        assert_eq!(hex.near_segment_angles, Some((30.0, 120.0)));
+        assert!(hex.constrained_delaunay);
     }
 
     #[test]

@@ -10,7 +10,6 @@ use crate::geom::{
     vector_angle_deg, Point,
 };
 use crate::mesh::{Pslg, TriMesh};
-use crate::quality::closest_pair::closest_pair;
 use crate::quality::validate::topology;
 
 /// A figure and the triangle where it is reached.
@@ -57,7 +56,8 @@ pub struct Metrics {
     pub edge_ratio_max: Option<Worst>,
     /// The shortest edge of the mesh; `triangle` is one triangle having it.
     pub shortest_edge: Option<Worst>,
-    /// The smallest distance between two input points.
+    /// The smallest distance between two input points; on an input with segments, between
+    /// two input features that share no point (`quality::feature_gap`).
     pub d_min: Option<f64>,
     /// `shortest_edge` over `d_min`; the paper's bound for `hex` is √7/(12√3) ≈ 0.12729.
     pub shortest_edge_over_d_min: Option<f64>,
@@ -250,24 +250,9 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
             continue;
         };
         let p = |x: u32| mesh.vertices[x as usize];
-        // incircle wants a counter-clockwise triangle; a flipped one is validate's business,
-        // but the sign must still mean "inside".
         let (pu, pv, p1, p2) = (p(u), p(v), p(w1), p(w2));
-        if [pu, pv, p1, p2]
-            .iter()
-            .any(|q| !q[0].is_finite() || !q[1].is_finite())
-        {
+        let Some(inside) = breaks_empty_circle(pu, pv, p1, p2) else {
             continue; // no circle to test; validate reports the coordinate
-        }
-        // The scaled predicates: exact signs at any coordinate magnitude (`robust` alone
-        // overflows in incircle from about 1e77 on and underflows below about 1e-80).
-        let o = orient2d_scaled(pu, pv, p1);
-        let inside = if o > 0.0 {
-            incircle_scaled(pu, pv, p1, p2) > 0.0
-        } else if o < 0.0 {
-            incircle_scaled(pv, pu, p1, p2) > 0.0
-        } else {
-            false
         };
         if inside {
             m.delaunay_violations += 1;
@@ -284,7 +269,8 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
     }
 
     if let Some(input) = input {
-        m.d_min = closest_pair(&input.points).map(|c| c.distance);
+        // The closest pair of points, or on a domain of features (`feature_gap`).
+        m.d_min = crate::quality::feature_gap(input).map(|c| c.distance);
     }
     if let (Some(d), Some(s)) = (m.d_min, m.shortest_edge) {
         if d > 0.0 {
@@ -292,6 +278,65 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
         }
     }
     m
+}
+
+/// Whether `p2` lies strictly inside the circle through the edge (pu, pv) and `p1`, the
+/// vertices opposite the edge on its two sides (the exact empty-circle test of the edge);
+/// `None` when a coordinate is not finite. A flipped triangle is validate's business, but the
+/// sign still means "inside". The scaled predicates give exact signs at any coordinate
+/// magnitude (`robust` alone overflows in incircle from about 1e77 on and underflows below
+/// about 1e-80).
+fn breaks_empty_circle(pu: Point, pv: Point, p1: Point, p2: Point) -> Option<bool> {
+    if [pu, pv, p1, p2]
+        .iter()
+        .any(|q| !q[0].is_finite() || !q[1].is_finite())
+    {
+        return None;
+    }
+    let o = orient2d_scaled(pu, pv, p1);
+    Some(if o > 0.0 {
+        incircle_scaled(pu, pv, p1, p2) > 0.0
+    } else if o < 0.0 {
+        incircle_scaled(pv, pu, p1, p2) > 0.0
+    } else {
+        false
+    })
+}
+
+/// The edges shared by two triangles that fail the exact empty-circle test and do not lie on
+/// an input segment (a constrained Delaunay mesh has none): how many, and the first. The
+/// segments are the chains of edges the conformity check walks (`validate::chains`).
+pub fn off_segment_delaunay_violations(
+    mesh: &TriMesh,
+    input: &Pslg,
+) -> (usize, Option<DelaunayEdge>) {
+    let topo = topology(mesh);
+    let on_segment = crate::quality::validate::chains::segment_edges(mesh, input, &topo);
+    let opposite = |t: usize, u: u32, v: u32| {
+        mesh.triangles[t]
+            .iter()
+            .copied()
+            .find(|&w| w != u && w != v)
+    };
+    let p = |x: u32| mesh.vertices[x as usize];
+    let mut count = 0;
+    let mut first = None;
+    for (u, v, t1, t2) in topo.interior {
+        if on_segment.contains(&(u.min(v), u.max(v))) {
+            continue;
+        }
+        let (Some(w1), Some(w2)) = (opposite(t1, u, v), opposite(t2, u, v)) else {
+            continue;
+        };
+        if breaks_empty_circle(p(u), p(v), p(w1), p(w2)) == Some(true) {
+            count += 1;
+            first.get_or_insert(DelaunayEdge {
+                edge: [u, v],
+                triangles: [t1, t2],
+            });
+        }
+    }
+    (count, first)
 }
 
 /// Figures of the triangles near the input segments and of the rest, apart.

@@ -9,6 +9,8 @@ pub mod closest_pair;
 mod corners;
 /// Longest-side bisection's descent bound: each triangle against the initial one it lies in.
 pub mod descent;
+/// d_min of a domain: the closest pair of input features that share no point.
+pub mod feature_gap;
 /// Angles, radius ratio, edge ratio, shortest edge / d_min, Delaunay counts.
 pub mod metrics;
 /// The rounding allowance of every bound: how far f64 vertices may move a figure.
@@ -23,6 +25,7 @@ pub use bounds::{
 };
 pub use closest_pair::{closest_pair, ClosestPair};
 pub use descent::{descent, Descent};
+pub use feature_gap::{feature_gap, Feature, FeatureGap};
 pub use metrics::{
     metrics, metrics_split, on_segment_tolerance, triangle_shape, DelaunayEdge, Metrics,
     SplitMetrics, TriangleShape, Worst, DELAUNAY_ANGLE_SLACK_DEG,

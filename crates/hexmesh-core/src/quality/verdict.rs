@@ -100,6 +100,11 @@ impl Verdict {
         self
     }
 
+    /// The rows that failed, in table order.
+    pub fn failed(&self) -> impl Iterator<Item = &Check> {
+        self.checks.iter().filter(|c| c.status == Status::Fail)
+    }
+
     /// True when the mesh is valid and no bound fails (skipped checks do not fail).
     pub fn passed(&self) -> bool {
         self.violations.is_empty() && self.checks.iter().all(|c| c.status != Status::Fail)
@@ -157,30 +162,9 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 .filter(|&t| part[t] && mesh.triangles[t].iter().all(|&v| (v as usize) < n))
                 .map(|t| (t, mesh.corners(t)))
         };
-        let worst_at = |t: usize, value: f64| WorstTriangle {
-            triangle: t,
-            corners: mesh.corners(t),
-            value,
-        };
-        // A figure with its limit: it fails when some triangle uses more than its allowance
-        // (`nearest`, the one nearest to breaking it); `most` is the largest allowance used.
+        // A figure with its limit, in the part of the mesh the shape bounds cover (`fit_check`).
         let mut bound = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>| {
-            let failed = fit.is_some_and(|f| !f.holds());
-            checks.push(Check {
-                what: what.to_string(),
-                value,
-                relation: if ge { "≥" } else { "≤" }.to_string(),
-                limit,
-                status: if failed { Status::Fail } else { Status::Ok },
-                worst: fit
-                    .filter(|_| failed)
-                    .map(|f| worst_at(f.nearest.triangle, f.nearest.value)),
-                rounding: fit.map(|f| Rounding {
-                    used: f.most.used,
-                    allowance: f.most.allowance,
-                }),
-                note: note.clone(),
-            });
+            checks.push(fit_check(mesh, what, (value, ge, limit), fit, note.clone()));
         };
         let mut exempt_corners = 0usize;
         if let Some(limit) = b.min_angle {
@@ -189,33 +173,14 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             let corners = input
                 .filter(|i| b.whole_sharp_corners && i.has_segments())
                 .map(super::corners::InputCorners::new);
-            // Streamed, as `angle_fit` is: a mesh of 10^8 triangles has 3·10^8 angles.
-            let exempt = std::cell::Cell::new(0usize);
-            let smallest = std::cell::Cell::new(None::<f64>);
-            let kept = covered()
-                .flat_map(|(t, c)| {
-                    let uses = angle_uses(t, c, limit, 180.0);
-                    (0..3).map(move |k| (uses[k], [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]))
-                })
-                .filter_map(|(u, [a, b, c])| {
-                    let whole =
-                        u.value < limit && corners.as_ref().is_some_and(|k| k.whole_at(a, b, c));
-                    if whole {
-                        exempt.set(exempt.get() + 1);
-                        None
-                    } else {
-                        smallest.set(Some(smallest.get().map_or(u.value, |s| s.min(u.value))));
-                        Some(u)
-                    }
-                });
-            let fit = fit_of(kept);
+            let (fit, smallest, exempt) = min_angle_fit(covered(), limit, corners.as_ref());
             let value = if corners.is_some() {
-                smallest.get()
+                smallest
             } else {
                 m.min_angle.map(|w| w.value)
             };
             bound("min angle (deg)", value, true, limit, fit);
-            exempt_corners = exempt.get();
+            exempt_corners = exempt;
         }
         if let Some(limit) = b.max_angle {
             let fit = angle_fit(covered(), 0.0, limit);
@@ -298,6 +263,16 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 });
             }
         }
+        if let (Some((lo, hi)), Some(s), Some(i), true) =
+            (b.near_segment_angles, &split, input, interior_only)
+        {
+            checks.extend(near_segment_checks(mesh, i, s, lo, hi));
+        }
+        if let (true, Some(i)) = (b.constrained_delaunay && b.delaunay, input) {
+            if i.has_segments() {
+                checks.push(constrained_delaunay_check(mesh, i));
+            }
+        }
         if let Some(r) = b.min_angle_over_ancestor {
             checks.push(descent_check(mesh, input, r));
         }
@@ -309,22 +284,9 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             checks.push(edge_check(mesh, limit));
         }
         if b.delaunay {
-            let count = m.delaunay_violations;
-            let failed = count > 0;
-            checks.push(Check {
-                what: "non-Delaunay edges (exact)".to_string(),
-                value: Some(count as f64),
-                relation: "=".to_string(),
-                limit: 0.0,
-                status: if failed { Status::Fail } else { Status::Ok },
-                worst: m.delaunay_first.filter(|_| failed).map(|e| WorstTriangle {
-                    triangle: e.triangles[0],
-                    corners: mesh.corners(e.triangles[0]),
-                    value: count as f64,
-                }),
-                rounding: None,
-                note: note.clone(),
-            });
+            let what = "non-Delaunay edges (exact)";
+            let (count, first) = (m.delaunay_violations, m.delaunay_first);
+            checks.push(delaunay_check(mesh, what, count, first, note.clone()));
         }
     }
     Verdict {
@@ -335,6 +297,150 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         metrics: all,
         split,
         numbering: Numbering::default(),
+    }
+}
+
+/// The smallest angle of the triangles `tris` against `limit` with the rounding allowance,
+/// leaving out the angles at input corners sharper than the limit taken whole (`corners`):
+/// the fit, the smallest angle kept and how many were left out. Streamed, as `angle_fit` is:
+/// a mesh of 10^8 triangles has 3·10^8 angles.
+fn min_angle_fit(
+    tris: impl Iterator<Item = (usize, [Point; 3])>,
+    limit: f64,
+    corners: Option<&super::corners::InputCorners>,
+) -> (Option<Fit>, Option<f64>, usize) {
+    let exempt = std::cell::Cell::new(0usize);
+    let smallest = std::cell::Cell::new(None::<f64>);
+    let kept = tris
+        .flat_map(|(t, c)| {
+            let uses = angle_uses(t, c, limit, 180.0);
+            (0..3).map(move |k| (uses[k], [c[k], c[(k + 1) % 3], c[(k + 2) % 3]]))
+        })
+        .filter_map(|(u, [a, b, c])| {
+            if u.value < limit && corners.is_some_and(|k| k.whole_at(a, b, c)) {
+                exempt.set(exempt.get() + 1);
+                None
+            } else {
+                smallest.set(Some(smallest.get().map_or(u.value, |s| s.min(u.value))));
+                Some(u)
+            }
+        });
+    let fit = fit_of(kept);
+    (fit, smallest.get(), exempt.get())
+}
+
+/// The rows of the near-segment angle bound (`Bounds::near_segment_angles`): the triangles
+/// touching a segment (`split.near_triangles`) have every angle in [lo, hi] with the rounding
+/// allowance, but the angles at input corners sharper than lo taken whole.
+fn near_segment_checks(
+    mesh: &TriMesh,
+    input: &Pslg,
+    split: &SplitMetrics,
+    lo: f64,
+    hi: f64,
+) -> [Check; 2] {
+    let n = mesh.vertices.len();
+    let near = || {
+        split
+            .near_triangles
+            .iter()
+            .copied()
+            .filter(|&t| mesh.triangles[t].iter().all(|&v| (v as usize) < n))
+            .map(|t| (t, mesh.corners(t)))
+    };
+    let corners = super::corners::InputCorners::new(input);
+    let (low_fit, smallest, exempt) = min_angle_fit(near(), lo, Some(&corners));
+    let high_fit = angle_fit(near(), 0.0, hi);
+    let note = "touching a segment".to_string();
+    let low_note = match exempt {
+        0 => note.clone(),
+        1 => format!("{note}; 1 whole sharp input corner left out"),
+        k => format!("{note}; {k} whole sharp input corners left out"),
+    };
+    let row = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>, note| {
+        fit_check(mesh, what, (value, ge, limit), fit, Some(note))
+    };
+    [
+        row(
+            "min angle near segments (deg)",
+            smallest,
+            true,
+            lo,
+            low_fit,
+            low_note,
+        ),
+        row(
+            "max angle near segments (deg)",
+            split.near.max_angle.map(|w| w.value),
+            false,
+            hi,
+            high_fit,
+            note,
+        ),
+    ]
+}
+
+/// The constrained Delaunay property over the whole mesh (`Bounds::constrained_delaunay`):
+/// no edge off the input segments fails the exact empty-circle test.
+fn constrained_delaunay_check(mesh: &TriMesh, input: &Pslg) -> Check {
+    let (count, first) = crate::quality::metrics::off_segment_delaunay_violations(mesh, input);
+    let what = "non-Delaunay edges off the segments (exact)";
+    delaunay_check(mesh, what, count, first, Some("whole mesh".to_string()))
+}
+
+/// The row of a figure held to a limit with the rounding allowance (`value` ≥ or ≤ `limit`,
+/// as `ge` says): it fails when some triangle uses more than its allowance (`fit.nearest`,
+/// the one nearest to breaking it, is then named); `fit.most` is the largest allowance used.
+fn fit_check(
+    mesh: &TriMesh,
+    what: &str,
+    (value, ge, limit): (Option<f64>, bool, f64),
+    fit: Option<Fit>,
+    note: Option<String>,
+) -> Check {
+    let failed = fit.is_some_and(|f| !f.holds());
+    Check {
+        what: what.to_string(),
+        value,
+        relation: if ge { "≥" } else { "≤" }.to_string(),
+        limit,
+        status: if failed { Status::Fail } else { Status::Ok },
+        worst: fit.filter(|_| failed).map(|f| WorstTriangle {
+            triangle: f.nearest.triangle,
+            corners: mesh.corners(f.nearest.triangle),
+            value: f.nearest.value,
+        }),
+        rounding: fit.map(|f| Rounding {
+            used: f.most.used,
+            allowance: f.most.allowance,
+        }),
+        note,
+    }
+}
+
+/// The row of a count of edges that fail the exact empty-circle test, which must be 0; a
+/// triangle of the first such edge is named when it fails.
+fn delaunay_check(
+    mesh: &TriMesh,
+    what: &str,
+    count: usize,
+    first: Option<crate::quality::DelaunayEdge>,
+    note: Option<String>,
+) -> Check {
+    let failed = count > 0;
+    Check {
+        what: what.to_string(),
+        value: Some(count as f64),
+        relation: "=".to_string(),
+        limit: 0.0,
+        status: if failed { Status::Fail } else { Status::Ok },
+        worst: first.filter(|_| failed).map(|e| WorstTriangle {
+            triangle: e.triangles[0],
+            corners: mesh.corners(e.triangles[0]),
+            value: count as f64,
+        }),
+        rounding: None,
+        note,
     }
 }
 

@@ -173,7 +173,12 @@ impl Mesher for Hex {
     }
 
     fn settings(&self, params: &Params) -> String {
-        let mut s = String::from("extended refinement (Sec. 5), angles 43.8979-90 deg");
+        // The summary line states what the mesh is promised: on a domain the triangles with a
+        // corner on a segment have a bound of their own (`pslg::band`).
+        let mut s = String::from(
+            "extended refinement (Sec. 5), angles 43.8979-90 deg off the segments, \
+             30-120 deg at them",
+        );
         crate::hex::size_settings(&mut s, params);
         s
     }

@@ -15,10 +15,9 @@
 
 use std::collections::BTreeMap;
 
-use super::band::Band;
+use super::band::{Band, Effort};
 use super::domain::carve;
 use super::fill::fill_cavity;
-use super::flip::flip_interior_cavity_triangles;
 use super::project::projected_centres;
 use super::{leaf_of_vertex, polygon_meets_segment, PslgStats};
 use crate::error::{Error, InputError};
@@ -61,7 +60,7 @@ pub(super) fn insert_segments(
     segments: &[[Point; 2]],
     crossed: &BTreeMap<Key, Vec<u32>>,
     (dual, dual_keys): (TriMesh, Vec<Key>),
-    min_edge: f64,
+    effort: Effort,
     stats: &mut PslgStats,
 ) -> std::result::Result<Built, Error> {
     let n_input = input.points.len();
@@ -179,7 +178,7 @@ pub(super) fn insert_segments(
 
     // Quality along the segments (`band`): the constrained Delaunay triangulation, improved
     // by points on the segments.
-    let mut band = Band::new(segments, vertices, on, triangles, n_input).with_min_edge(min_edge);
+    let mut band = Band::new(segments, vertices, on, triangles, n_input).with_effort(effort);
     band.make_delaunay();
     let left = band.improve(BAND_BUDGET_PER_TRIANGLE * band.tris.len() as u64 + 1000);
     stats.band_inserted += band.inserted;
@@ -207,11 +206,10 @@ pub(super) fn insert_segments(
         })
         .map(|&t| position[t as usize])
         .collect();
-    // A triangle off the segments the band could not repair (a notch of three dual
-    // vertices) is flipped towards the segment as before the band existed (`flip`), which
-    // gives up the empty-circle property at that edge rather than the interior bounds.
-    let on_seg: Vec<bool> = band.segs.iter().map(|s| !s.is_empty()).collect();
-    stats.flips += flip_interior_cavity_triangles(&band.verts, &mut triangles, &on_seg);
+    // A triangle off the segments the band could not repair is left as it is: the driver's
+    // self-check finds it and subdivides the hexagons around it (`drive`). (It used to be
+    // flipped towards the segment, giving up the empty-circle property at that edge, which the
+    // constrained Delaunay promise does not allow.)
     let (vertices, on) = (band.verts, band.segs);
     let n_all = vertices.len();
     let cavity: Vec<bool> = triangles

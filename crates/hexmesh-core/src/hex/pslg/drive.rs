@@ -8,10 +8,17 @@
 //! when validity fails or the rounds run out, the mesher returns an error naming the place.
 //!
 //! Near-segment triangles the band (`band`) could not repair are subdivided around in the
-//! same way for up to `NEAR_ROUNDS` rounds; the mesh and hierarchy from before those rounds
-//! are kept (`fallback`) and returned when the finer lattice breaks an interior bound or the
-//! Sec. 6.3 shortest edge, or grows beyond `MAX_GROWTH`.
+//! same way in rounds before `NEAR_ROUNDS`, the hexagons coarser than the finest level of the
+//! first round first. Of the meshes whose interior passed, the one with the fewest such
+//! triangles is kept with its hierarchy (`Fallback`) and returned when the finer lattice goes
+//! below the Sec. 6.3 shortest edge (not promised under a size limit), grows beyond
+//! `MAX_GROWTH`, still breaks an interior bound when the rounds run out, or has no fewer such
+//! triangles than the mesh of round `NEAR_ROUNDS`. Before it is returned, the band is run
+//! again on it with the thorough search (`band::Effort::thorough`), whose mesh is taken when
+//! it leaves fewer such triangles. The near-segment triangles it keeps fail the promise, and
+//! the self-check of `hexmesh mesh` says so.
 
+use super::band::Effort;
 use super::cavity::{insert_segments, Built};
 use super::rules::{apply, apply_rules};
 use super::{leaf_of_vertex, PslgStats, MAX_GROWTH, MAX_ROUNDS, NAME, NEAR_ROUNDS};
@@ -27,6 +34,7 @@ use crate::hex::refine::refine_simple;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::{validate, ValidateOptions};
+use std::collections::BTreeMap;
 
 /// Why the driver stopped.
 pub(super) enum Fail {
@@ -60,11 +68,14 @@ pub(super) fn drive(
     crate::hex::size::refine(h)?;
     let mut candidates: KeySet = h.leaves().into_iter().map(|(k, _)| k).collect();
     let mut first_size = None;
-    // The last mesh whose interior passed, kept with its hierarchy while subdivisions try to
-    // repair the near-segment triangles the band left: if they fail, it is the answer.
-    let mut fallback: Option<(Hierarchy, TriMesh, Vec<bool>)> = None;
-    // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback.
-    let min_edge = crate::quality::closest_pair(&input.points).map_or(0.0, |c| {
+    let mut finest: Option<u8> = None;
+    // Of the meshes whose interior passed, the one with the fewest near-segment triangles the
+    // band left (that count first), kept with its hierarchy while subdivisions try to repair
+    // them: if they fail, it is the answer.
+    let mut fallback: Option<Fallback> = None;
+    // The Sec. 6.3 shortest edge away from the segments, for the band and the fallback, in
+    // d_min of the domain (`quality::feature_gap`).
+    let min_edge = crate::quality::feature_gap(input).map_or(0.0, |c| {
         c.distance * crate::quality::bounds::HEX.min_edge_over_dmin
     });
     loop {
@@ -72,9 +83,8 @@ pub(super) fn drive(
         let crossed = apply_rules(h, input, segments, candidates, stats)?;
         let first = *first_size.get_or_insert(h.full_leaves);
         if h.full_leaves > MAX_GROWTH * first {
-            if let Some((old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
+            if let Some(f) = fallback.take() {
+                return Ok(f.finish(h, input, segments, min_edge, stats)?);
             }
             return Err(Fail::Error(Error::mesher(
                 NAME,
@@ -90,53 +100,52 @@ pub(super) fn drive(
             .keys()
             .map(|k| h.lattice.radius(k.k))
             .fold(0.0, f64::max);
-        let r = rings(h);
-        // MOVED_CENTER_3 hexagons keep their rebuilt dual (`mc3`); Sec. 7.2 keeps them away
-        // from the segments, so the cavities below never cut into one.
-        let (moved, patch) = relocations(h, &r);
-        let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
-        let built = insert_segments(h, input, segments, &crossed, dual, min_edge, stats)?;
+        let effort = Effort {
+            min_edge,
+            thorough: false,
+        };
+        let built = build(h, input, segments, &crossed, effort, stats)?;
         let mut bad = interior_offenders(&built);
-        if !bad.is_empty() {
-            if let Some((old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
-            }
-        }
         // A lattice refined for the near-segment triangles must not go below the Sec. 6.3
         // shortest edge away from the segments; where it would, the mesh before it is the
-        // answer.
-        if fallback.is_some() && bad.is_empty() && interior_edge_below(&built, min_edge) {
-            if let Some((old, mesh, on)) = fallback.take() {
-                *h = old;
-                return Ok((mesh, on));
+        // answer. Under a size limit the limit sets the edges, and hex does not promise the
+        // Sec. 6.3 edge (`Mesher::promise`).
+        let sized = h.size_level() > 0;
+        if fallback.is_some() && bad.is_empty() && !sized && interior_edge_below(&built, min_edge) {
+            if let Some(f) = fallback.take() {
+                return Ok(f.finish(h, input, segments, min_edge, stats)?);
             }
         }
-        let near_only = bad.is_empty() && !built.stuck.is_empty() && stats.rounds < NEAR_ROUNDS;
-        if bad.is_empty() && !near_only {
-            let violations = validate(
-                &built.mesh,
-                Some(input),
-                &ValidateOptions {
-                    single_component: false,
-                    conforming: true,
-                },
-            );
-            if let Some(v) = violations.first() {
-                return Err(Fail::Error(Error::mesher(
-                    NAME,
-                    format!("internal error: the PSLG mesh is not valid: {v}"),
-                )));
-            }
+        if bad.is_empty() && built.stuck.is_empty() {
+            checked(&built.mesh, input)?;
             return Ok((built.mesh, built.on_segment));
         }
+        let near_only = bad.is_empty();
         if near_only {
             // Ours: the band left near-segment triangles it could not repair; a finer lattice
-            // there gives it other points to work with.
-            fallback = Some((h.clone(), built.mesh.clone(), built.on_segment.clone()));
+            // there gives it other points to work with. The mesh with the fewest of them is
+            // kept.
+            let stuck = built.stuck.len();
+            if fallback.as_ref().is_none_or(|f| stuck < f.stuck) {
+                fallback = Some(Fallback {
+                    stuck,
+                    h: h.clone(),
+                    crossed: crossed.clone(),
+                    mesh: built.mesh.clone(),
+                    on_segment: built.on_segment.clone(),
+                });
+            }
+            if stats.rounds >= NEAR_ROUNDS {
+                if let Some(f) = fallback.take() {
+                    return Ok(f.finish(h, input, segments, min_edge, stats)?);
+                }
+            }
             bad = built.stuck.clone();
         }
         if stats.rounds >= MAX_ROUNDS {
+            if let Some(f) = fallback.take() {
+                return Ok(f.finish(h, input, segments, min_edge, stats)?);
+            }
             let t = bad[0];
             let c = built.mesh.corners(t);
             return Err(Fail::Error(Error::mesher(
@@ -167,8 +176,99 @@ pub(super) fn drive(
             .collect();
         split.sort();
         split.dedup();
+        if near_only {
+            // Ours: the hexagons coarser than the finest level the rules made first (domain
+            // fuzz seed 20261123, case 3283: a coarse triangle beside the outer boundary
+            // stuck beside fine ones at a small hole, where a finer level would put an
+            // interior edge below Sec. 6.3 and end the rounds before the coarse one is
+            // tried).
+            let finest = *finest
+                .get_or_insert_with(|| h.leaves().iter().map(|(k, _)| k.k).max().unwrap_or(0));
+            if split.iter().any(|k| k.k < finest) {
+                split.retain(|k| k.k < finest);
+            }
+        }
         stats.verify_splits += apply(h, split)?;
         candidates = around(&h.log);
+    }
+}
+
+/// The mesh of hierarchy `h`: its dual with the relocations, the segments inserted into it,
+/// and the band's repair with `effort`.
+fn build(
+    h: &Hierarchy,
+    input: &Pslg,
+    segments: &[[Point; 2]],
+    crossed: &BTreeMap<Key, Vec<u32>>,
+    effort: Effort,
+    stats: &mut PslgStats,
+) -> std::result::Result<Built, Error> {
+    let r = rings(h);
+    // MOVED_CENTER_3 hexagons keep their rebuilt dual (`mc3`); Sec. 7.2 keeps them away from
+    // the segments, so the cavities below never cut into one.
+    let (moved, patch) = relocations(h, &r);
+    let dual = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+    insert_segments(h, input, segments, crossed, dual, effort, stats)
+}
+
+/// A mesh whose interior passed, with near-segment triangles the band left (`stuck` of them),
+/// and the hierarchy and crossed cells it was built from.
+struct Fallback {
+    stuck: usize,
+    h: Hierarchy,
+    crossed: BTreeMap<Key, Vec<u32>>,
+    mesh: TriMesh,
+    on_segment: Vec<bool>,
+}
+
+impl Fallback {
+    /// Makes `h` this fallback's hierarchy and returns its mesh, or the mesh the thorough
+    /// band search (`Effort::thorough`) builds on it when that one leaves fewer near-segment
+    /// triangles and keeps the interior bounds and, without a size limit, the Sec. 6.3
+    /// shortest edge.
+    fn finish(
+        self,
+        h: &mut Hierarchy,
+        input: &Pslg,
+        segments: &[[Point; 2]],
+        min_edge: f64,
+        stats: &mut PslgStats,
+    ) -> std::result::Result<(TriMesh, Vec<bool>), Error> {
+        *h = self.h;
+        let effort = Effort {
+            min_edge,
+            thorough: true,
+        };
+        let built = build(h, input, segments, &self.crossed, effort, stats)?;
+        let sized = h.size_level() > 0;
+        if built.stuck.len() < self.stuck
+            && interior_offenders(&built).is_empty()
+            && (sized || !interior_edge_below(&built, min_edge))
+        {
+            checked(&built.mesh, input)?;
+            return Ok((built.mesh, built.on_segment));
+        }
+        checked(&self.mesh, input)?;
+        Ok((self.mesh, self.on_segment))
+    }
+}
+
+/// An error when `mesh` is not a valid conforming mesh of `input` (`quality::validate`).
+fn checked(mesh: &TriMesh, input: &Pslg) -> std::result::Result<(), Error> {
+    let violations = validate(
+        mesh,
+        Some(input),
+        &ValidateOptions {
+            single_component: false,
+            conforming: true,
+        },
+    );
+    match violations.first() {
+        Some(v) => Err(Error::mesher(
+            NAME,
+            format!("internal error: the PSLG mesh is not valid: {v}"),
+        )),
+        None => Ok(()),
     }
 }
 

@@ -75,8 +75,11 @@ pub(crate) struct Chain {
 }
 
 /// Walks from vertex `va` (at `pa`) to vertex `vb` (at `pb`) through mesh edges whose far
-/// vertex lies on the segment's line and strictly nearer `pb`, taking the nearest such
-/// neighbour each step.
+/// vertex lies on the segment's line and strictly nearer `pb`, taking the such neighbour
+/// closest to the line each step (then the nearest along it). On a segment a few millionths
+/// long at coordinates in the millions, the tolerance below is as wide as the segment is
+/// long, and a mesh vertex beside the segment can count as on it; a split point, rounded
+/// onto the line, is much closer to it (domain fuzz seed 20261123, case 4327).
 ///
 /// A vertex counts as on the line when its exact orientation against the segment is zero, or
 /// within 2^-40 of the segment's coordinate scale of the line: meshers split segments at
@@ -105,9 +108,10 @@ pub(crate) fn segment_chain(
         .iter()
         .fold(length, |m, c| m.max(c.abs()));
     let tolerance = scale * (-40f64).exp2();
-    let on_line = |pw: Point| {
-        let o = orient2d_scaled(sa, sb, scale_point(pw, -k));
-        o == 0.0 || o.abs() / length <= tolerance
+    // The distance of a vertex from the line, when it counts as on it.
+    let off_line = |pw: Point| {
+        let o = orient2d_scaled(sa, sb, scale_point(pw, -k)).abs() / length;
+        (o == 0.0 || o <= tolerance).then_some(o)
     };
     let end = progress(vb);
     let mut edges = Vec::new();
@@ -116,11 +120,14 @@ pub(crate) fn segment_chain(
         let here = progress(u);
         let step = adjacency
             .neighbours(u)
-            .filter(|&w| {
-                let pw = mesh.vertices[w as usize];
-                on_line(pw) && progress(w) > here && progress(w) <= end
+            .filter(|&w| progress(w) > here && progress(w) <= end)
+            .filter_map(|w| Some((off_line(mesh.vertices[w as usize])?, w)))
+            .min_by(|&(ox, x), &(oy, y)| {
+                ox.total_cmp(&oy)
+                    .then(progress(x).total_cmp(&progress(y)))
+                    .then(x.cmp(&y))
             })
-            .min_by(|&x, &y| progress(x).total_cmp(&progress(y)).then(x.cmp(&y)));
+            .map(|(_, w)| w);
         match step {
             Some(w) => {
                 edges.push((u, w));
@@ -181,4 +188,50 @@ pub(crate) fn walk_segments(
         });
     }
     out
+}
+
+/// The mesh edges (smaller vertex first) that lie on input segments, as [`walk_segments`]
+/// finds them in a mesh of topology `topo`.
+pub(crate) fn segment_edges(
+    mesh: &TriMesh,
+    input: &Pslg,
+    topo: &super::Topology,
+) -> std::collections::HashSet<(u32, u32)> {
+    let adjacency = Adjacency::new(mesh, &topo.usable);
+    let vertex_of = input_vertices(mesh, input);
+    walk_segments(mesh, input, &adjacency, &vertex_of)
+        .into_iter()
+        .flat_map(|w| w.edges)
+        .map(|(u, w)| (u.min(w), u.max(w)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Domain fuzz seed 20261123, case 4327: a segment 1.4e-5 long at coordinates in the
+    /// millions, split at m; a vertex f beside it, 2e-6 off the line (within the tolerance)
+    /// and before m along it, is a neighbour of the first endpoint too. The walk goes through
+    /// m, the vertex on the line.
+    #[test]
+    fn the_walk_takes_the_split_point_not_a_vertex_beside_a_tiny_segment() {
+        let pa: Point = [421257.6130264518, 5654694.737125214];
+        let pb: Point = [421257.6130392821, 5654694.737129657];
+        let along = |t: f64, off: f64| {
+            let (dx, dy) = (pb[0] - pa[0], pb[1] - pa[1]);
+            let l = dx.hypot(dy);
+            [pa[0] + t * dx - off * dy / l, pa[1] + t * dy + off * dx / l]
+        };
+        let (m, f, q) = (along(0.33, 0.0), along(0.1, 2e-6), along(0.5, -5e-6));
+        // 0 = pa, 1 = m, 2 = pb, 3 = f (left of the line), 4 = q (right of it).
+        let mesh = TriMesh {
+            vertices: vec![pa, m, pb, f, q],
+            triangles: vec![[0, 1, 3], [1, 2, 3], [0, 4, 1], [1, 4, 2]],
+        };
+        let adjacency = Adjacency::new(&mesh, &[true; 4]);
+        let chain = segment_chain(&mesh, &adjacency, [pa, pb], [0, 2]);
+        assert_eq!(chain.stuck_at, None);
+        assert_eq!(chain.edges, vec![(0, 1), (1, 2)]);
+    }
 }

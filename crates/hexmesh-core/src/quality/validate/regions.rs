@@ -4,9 +4,7 @@
 //! an earlier one. The segments are the chains of edges the conformity check walks
 //! (`chains`), so a region ends exactly where `verify` sees the segment.
 
-use std::collections::HashSet;
-
-use super::chains::{input_vertices, walk_segments, Adjacency};
+use super::chains::segment_edges;
 use super::{topology, Topology};
 use crate::geom::orient2d_scaled;
 use crate::mesh::{Pslg, TriMesh};
@@ -18,13 +16,7 @@ pub fn triangle_regions(mesh: &TriMesh, input: &Pslg) -> Vec<Option<usize>> {
         return vec![None; mesh.triangles.len()];
     }
     let topo = topology(mesh);
-    let adjacency = Adjacency::new(mesh, &topo.usable);
-    let vertex_of = input_vertices(mesh, input);
-    let on_segment: HashSet<(u32, u32)> = walk_segments(mesh, input, &adjacency, &vertex_of)
-        .into_iter()
-        .flat_map(|w| w.edges)
-        .map(|(u, w)| (u.min(w), u.max(w)))
-        .collect();
+    let on_segment = segment_edges(mesh, input, &topo);
     regions_across(mesh, input, &topo, |u, v| {
         on_segment.contains(&(u.min(v), u.max(v)))
     })

@@ -191,7 +191,8 @@ impl Band<'_> {
         between: impl FnOnce(&mut Self),
         made: &[[u32; 3]],
     ) {
-        let mut outer: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
+        // An edit touches a handful of triangles: its edges are looked up in short lists.
+        let mut outer: Vec<((u32, u32), u32)> = Vec::with_capacity(3 * killed.len());
         for &t in killed {
             let tri = self.tris[t as usize];
             for i in 0..3 {
@@ -199,7 +200,7 @@ impl Band<'_> {
                 if n != NONE && killed.contains(&n) {
                     continue;
                 }
-                outer.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), n);
+                outer.push(((tri[(i + 1) % 3], tri[(i + 2) % 3]), n));
             }
         }
         for &t in killed {
@@ -214,22 +215,22 @@ impl Band<'_> {
         }
         between(self);
         let first = self.tris.len() as u32;
-        let mut inner: crate::hex::lattice::FxHashMap<(u32, u32), u32> = Default::default();
+        let mut inner: Vec<((u32, u32), u32)> = Vec::with_capacity(3 * made.len());
         for (k, &tri) in made.iter().enumerate() {
             self.tris.push(tri);
             self.nbr.push([NONE; 3]);
             self.alive.push(true);
             for i in 0..3 {
-                inner.insert((tri[(i + 1) % 3], tri[(i + 2) % 3]), first + k as u32);
+                inner.push(((tri[(i + 1) % 3], tri[(i + 2) % 3]), first + k as u32));
             }
         }
         for (k, &tri) in made.iter().enumerate() {
             let t = first + k as u32;
             for i in 0..3 {
                 let (x, y) = (tri[(i + 1) % 3], tri[(i + 2) % 3]);
-                if let Some(&o) = inner.get(&(y, x)) {
+                if let Some(&(_, o)) = inner.iter().find(|e| e.0 == (y, x)) {
                     self.nbr[t as usize][i] = o;
-                } else if let Some(&n) = outer.get(&(x, y)) {
+                } else if let Some(&(_, n)) = outer.iter().find(|e| e.0 == (x, y)) {
                     self.nbr[t as usize][i] = n;
                     if n != NONE {
                         if let Some(sl) = self.slot(n, y, x) {
@@ -243,8 +244,8 @@ impl Band<'_> {
             }
         }
         // An outer edge no new triangle took is now on the mesh's boundary.
-        for (&(x, y), &n) in &outer {
-            if n != NONE && !inner.contains_key(&(x, y)) {
+        for &((x, y), n) in &outer {
+            if n != NONE && !inner.iter().any(|e| e.0 == (x, y)) {
                 if let Some(sl) = self.slot(n, y, x) {
                     if self.nbr[n as usize][sl] != NONE
                         && !self.alive[self.nbr[n as usize][sl] as usize]
@@ -278,7 +279,6 @@ impl Band<'_> {
         let m = (0..3).find(|&k| tri0[k] == w).unwrap_or(0);
         let (a, b) = (tri0[(m + 1) % 3], tri0[(m + 2) % 3]);
         let t1 = self.nbr[t0 as usize][m];
-        let pos = |x: u32| if x == w { foot } else { self.verts[x as usize] };
         let mut made: Vec<[u32; 3]> = star
             .iter()
             .filter(|&&t| t != t0)
@@ -295,6 +295,22 @@ impl Band<'_> {
             made.push([w, a, c]);
             killed.push(t1);
         }
+        self.move_vertex(w, foot, Some(s), &killed, &made)
+    }
+
+    /// Replaces the triangles `killed` by `made`, with vertex `w` moved to `to` (and onto
+    /// segment `onto` when given) in between, then restores the constrained Delaunay property
+    /// by Lawson flips; false, with nothing changed, when a triangle of `made` would not be
+    /// counter-clockwise at the new place, and false when the flips do not settle.
+    fn move_vertex(
+        &mut self,
+        w: u32,
+        to: Point,
+        onto: Option<u32>,
+        killed: &[u32],
+        made: &[[u32; 3]],
+    ) -> bool {
+        let pos = |x: u32| if x == w { to } else { self.verts[x as usize] };
         if made
             .iter()
             .any(|t| orient2d(pos(t[0]), pos(t[1]), pos(t[2])) <= 0.0)
@@ -303,18 +319,37 @@ impl Band<'_> {
         }
         let first = self.tris.len() as u32;
         self.replace_with(
-            &killed,
+            killed,
             |band| {
                 if let Some(log) = &mut band.log {
                     log.moved
                         .push((w, band.verts[w as usize], band.segs[w as usize].clone()));
                 }
-                band.verts[w as usize] = foot;
-                band.segs[w as usize] = vec![s];
+                band.verts[w as usize] = to;
+                if let Some(s) = onto {
+                    band.segs[w as usize] = vec![s];
+                }
             },
-            &made,
+            made,
         );
         self.legalize((first..self.tris.len() as u32).collect())
+    }
+
+    /// Moves vertex `w` (off the segments, not an input point) to `to`, keeping its triangles
+    /// and then restoring the constrained Delaunay property by Lawson flips (ours: the dual
+    /// vertex beside a segment given room, as paper 001 Sec. 5.2 moves a lattice corner away
+    /// from the boundary). Inside an open edit; false when a triangle of its star would turn
+    /// over, or the flips do not settle.
+    pub(super) fn shift(&mut self, w: u32, to: Point) -> bool {
+        if (w as usize) < self.n_fixed || !self.segs[w as usize].is_empty() {
+            return false;
+        }
+        let (star, closed) = self.star_ccw(w);
+        if !closed {
+            return false;
+        }
+        let made: Vec<[u32; 3]> = star.iter().map(|&t| self.tris[t as usize]).collect();
+        self.move_vertex(w, to, None, &star, &made)
     }
 
     /// Lawson flips, recorded in the open edit, from the triangles `stack` until every edge

@@ -65,6 +65,20 @@ pub fn run_isolated(
     params: &Params,
     timeout: Duration,
 ) -> Result<Isolated> {
+    run_isolated_watched(exe, mesher, input, params, timeout, &mut |_, _| {})
+}
+
+/// `run_isolated`, calling `watch` with the time spent and the child's process id each time
+/// it looks whether the child has finished (every 20 ms at most), so that the caller can
+/// show the run's progress (`hexmesh mesh` draws it; the child itself writes nothing).
+pub fn run_isolated_watched(
+    exe: &Path,
+    mesher: &str,
+    input: &Pslg,
+    params: &Params,
+    timeout: Duration,
+    watch: &mut dyn FnMut(Duration, u32),
+) -> Result<Isolated> {
     input.validate_input()?;
     registry::mesher(mesher)?;
     let request = encode_request(mesher, input, params);
@@ -91,7 +105,7 @@ pub fn run_isolated(
     let out_reader = thread::spawn(move || read_all(stdout));
     let err_reader = thread::spawn(move || read_all(stderr));
 
-    let waited = wait_with_timeout(&mut child, timeout, start);
+    let waited = wait_with_timeout(&mut child, timeout, start, watch);
     let elapsed = start.elapsed();
     let _ = writer.join();
     let out = out_reader.join().unwrap_or_default();
@@ -144,6 +158,7 @@ fn wait_with_timeout(
     child: &mut Child,
     timeout: Duration,
     start: Instant,
+    watch: &mut dyn FnMut(Duration, u32),
 ) -> std::io::Result<Waited> {
     let mut pause = Duration::from_millis(1);
     loop {
@@ -151,6 +166,7 @@ fn wait_with_timeout(
             return Ok(Waited::Exited(status));
         }
         let spent = start.elapsed();
+        watch(spent, child.id());
         if spent >= timeout {
             let peak_rss_bytes = peak_rss(&format!("/proc/{}/status", child.id()));
             // The child may have exited between try_wait and kill: then kill fails harmlessly.

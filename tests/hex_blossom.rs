@@ -144,7 +144,7 @@ fn candidates_are_tried_in_key_order_and_blossoms_never_overlap() {
         .filter(|(_, c)| *c == Cell::Full { subdivided: false })
         .map(|(k, _)| k)
         .collect();
-    let tops = candidate_tops(&h, &r, &leaves);
+    let tops = candidate_tops(&h, &r, leaves);
     let merged = coarsen(&mut h, &r, &tops);
     assert!(merged.len() >= 14, "a level-5 plane holds several blossoms");
     let mut unique = merged.clone();

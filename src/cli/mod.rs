@@ -13,6 +13,8 @@ use crate::mesh::Pslg;
 use crate::mesher::{Budget, Mesher, Params};
 use crate::quality::{Bounds, Numbering};
 
+mod mesh_progress;
+
 #[derive(Parser)]
 #[command(
     name = "hexmesh",
@@ -382,7 +384,16 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     };
     check_triangle_switches(mesher.name(), &params)?;
     let exe = crate::isolate::find_exe()?;
-    let run = match crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout) {
+    let mut progress = mesh_progress::MeshProgress::new(mesher.name());
+    let isolated = crate::isolate::run_isolated_watched(
+        &exe,
+        mesher.name(),
+        &input,
+        &params,
+        timeout,
+        &mut |spent, pid| progress.meshing(spent, pid),
+    );
+    let run = match isolated {
         Ok(isolated) => isolated.run,
         // A refusal naming input points names them by the lines of the file they came from.
         Err(Error::Input { problem, .. }) if Path::new(&args.input).exists() => {
@@ -403,7 +414,10 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         );
         return Ok(ExitCode::from(1));
     }
-    let written = crate::io::write_mesh_with(&args.prefix, &run.mesh, Some(&input), &formats)?;
+    progress.phase("writing the files");
+    let written = crate::io::write_mesh_with(&args.prefix, &run.mesh, Some(&input), &formats);
+    progress.finish();
+    let written = written?;
     eprintln!(
         "{}: {} vertices, {} triangles in {:.3} s ({})",
         mesher.name(),

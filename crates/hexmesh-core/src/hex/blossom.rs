@@ -81,9 +81,9 @@ pub fn coarsen(h: &mut Hierarchy, r: &Rings, tops: &[Key]) -> Vec<Key> {
 
 /// The subdivided hexagons whose central child is a full leaf of class FIXED_CENTER_REGULAR:
 /// the only possible blossom tops, found from the leaves of the hierarchy.
-pub fn candidate_tops(h: &Hierarchy, r: &Rings, leaves: &[Key]) -> Vec<Key> {
+pub fn candidate_tops(h: &Hierarchy, r: &Rings, leaves: impl IntoIterator<Item = Key>) -> Vec<Key> {
     leaves
-        .iter()
+        .into_iter()
         .filter(|c| c.k > 0 && c.i % 2 == 0 && c.j % 2 == 0)
         .map(|c| Key::new(c.k - 1, c.i / 2, c.j / 2))
         .filter(|t| {

@@ -58,6 +58,34 @@ pub fn extract_patched(
     extract_all(h, placement, moved, patch)
 }
 
+/// A centre's place asked after the table of moved centres, before the lattice centre
+/// (`extract_relocated`).
+pub type Relocate<'a> = &'a (dyn Fn(Key) -> Option<Point> + Sync);
+
+/// Gives triangles of the patch to the function it is called with, in order, when the dual
+/// emits them (`extract_relocated`).
+pub type PatchTriangles<'a> = &'a dyn Fn(&mut dyn FnMut([Key; 3]));
+
+/// `extract_patched` in `Relocated` placement, with the centres that `moved` does not hold
+/// placed by `relocate` where it gives a place, and the triangles of `later` emitted after
+/// those of `patch`: the whole dual without a table of every relocated centre nor a list of
+/// the patch's triangles (`extended::chain_relocations`), the places computed as the vertices
+/// are met (over the threads of the split descent), the patch's triangles as they are made.
+pub fn extract_relocated(
+    h: &Hierarchy,
+    (moved, relocate): (&FxHashMap<Key, Point>, Relocate<'_>),
+    patch: &Patch,
+    later: PatchTriangles<'_>,
+) -> (TriMesh, Vec<Key>) {
+    extract_all_from(
+        h,
+        (Placement::Relocated, Some(relocate)),
+        moved,
+        (patch, Some(later)),
+        PARALLEL_EXTRACT_MIN,
+    )
+}
+
 /// The triangles of `extract_moved` that lie in lattice triangles touching `region` (with
 /// the vertices they use): the part of the dual a local change can have altered, found by
 /// descending only into the lattice triangles that touch the region.
@@ -128,29 +156,76 @@ fn extract_all(
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
 ) -> (TriMesh, Vec<Key>) {
-    extract_all_from(h, placement, moved, patch, PARALLEL_EXTRACT_MIN)
+    extract_all_from(
+        h,
+        (placement, None),
+        moved,
+        (patch, None),
+        PARALLEL_EXTRACT_MIN,
+    )
 }
 
-/// `extract_all`, split over threads from `min_leaves` full leaves on.
+/// `extract_all`, split over threads from `min_leaves` full leaves on, with the centres
+/// `moved` does not hold placed by the `Relocate` given, if any, and the `PatchTriangles`
+/// given, if any, after the patch's own (`extract_relocated`).
 fn extract_all_from(
     h: &Hierarchy,
-    placement: Placement,
+    (placement, relocate): (Placement, Option<Relocate<'_>>),
     moved: &FxHashMap<Key, Point>,
-    patch: &Patch,
+    (patch, later): (&Patch, Option<PatchTriangles<'_>>),
     min_leaves: usize,
 ) -> (TriMesh, Vec<Key>) {
-    if h.full_leaves < min_leaves {
-        return extract_where(h, placement, moved, patch, true, |_| true);
-    }
     let mut b = Builder::new(h, placement, moved, &patch.dropped, true);
+    b.relocate = relocate;
+    if h.full_leaves < min_leaves {
+        descend(h, root_triangles(h), &|_| true, &mut |tri| b.emit(tri));
+    } else {
+        // The centres the patch's triangles use: the parts' vertices among them go into the
+        // index, where `emit_patch` finds them.
+        let mut wanted: FxHashSet<Key> = FxHashSet::default();
+        wanted.extend(patch.triangles.iter().flatten().map(|c| c.canonical()));
+        if let Some(later) = later {
+            later(&mut |tri| wanted.extend(tri.map(|c| c.canonical())));
+        }
+        b = emit_split(h, b, &wanted);
+    }
+    for tri in &patch.triangles {
+        b.emit_patch(*tri);
+    }
+    if let Some(later) = later {
+        later(&mut |tri| b.emit_patch(tri));
+    }
+    b.finish()
+}
+
+/// The descent of `extract_all_from` over threads, absorbed into `b` in emission order. Only
+/// the vertices two subtrees can share, on the lattice lines of the finest subtree's level
+/// (`on_lines`), and those the patch will ask for (`wanted`), go into the builder's index; the
+/// others lie inside one subtree, whose part numbers them alone (at plane-100k an index of
+/// every vertex was about 14 bytes an output triangle).
+fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>, wanted: &FxHashSet<Key>) -> Builder<'a> {
     let items = expand(h, root_triangles(h), PARALLEL_SUBTREES);
-    let parts = {
+    let finest = items
+        .iter()
+        .flat_map(|item| match item {
+            Item::Emit(tri) => *tri,
+            Item::Descend(tri) => tri.map(|c| c.0),
+        })
+        .map(|c| c.k)
+        .max()
+        .unwrap_or(0);
+    // The subtrees go in waves, each split over the threads and absorbed before the next
+    // starts: only one wave's parts are alive beside the growing builder (with all parts at
+    // once, the last one alone was about 23 bytes a triangle beside the whole builder at
+    // plane-100k).
+    let wave = items.len().div_ceil(PARALLEL_WAVES).max(1);
+    // Each part's share of the full leaves, if the subtrees share them evenly, with room for
+    // an uneven split: reserved but untouched room costs no memory.
+    let per_item = h.full_leaves.div_ceil(items.len().max(1));
+    for items in items.chunks(wave) {
         let base = &b;
-        // Each part's share of the full leaves, if the subtrees share them evenly, with room
-        // for an uneven split: reserved but untouched room costs no memory.
-        let share = |chunk: usize| (h.full_leaves * chunk).div_ceil(items.len().max(1)) * 5 / 4;
-        crate::hex::parallel::in_parallel_from(&items, 2, |chunk| {
-            let leaves = share(chunk.len());
+        let parts = crate::hex::parallel::in_parallel_from(items, 2, |chunk| {
+            let leaves = per_item * chunk.len() * 5 / 4;
             let mut part = Part {
                 index: KeyIndex::with_capacity(leaves),
                 vertices: Vec::with_capacity(leaves),
@@ -167,15 +242,12 @@ fn extract_all_from(
             // Only the vertices and triangles are merged.
             part.index = KeyIndex::default();
             part
-        })
-    };
-    for part in parts {
-        b.absorb(part);
+        });
+        for part in parts {
+            b.absorb(part, |key| on_lines(key, finest) || wanted.contains(&key));
+        }
     }
-    for tri in &patch.triangles {
-        b.emit_patch(*tri);
-    }
-    b.finish()
+    b
 }
 
 /// Hierarchies with at least this many full leaves are extracted over threads.
@@ -183,6 +255,9 @@ const PARALLEL_EXTRACT_MIN: usize = 1 << 16;
 
 /// `extract_all` expands the first levels until this many subtrees are pending.
 const PARALLEL_SUBTREES: usize = 1024;
+
+/// `extract_all` meets the subtrees in this many waves (`extract_all_from`).
+const PARALLEL_WAVES: usize = 16;
 
 /// A lattice triangle of the recursion with whether each of its hexagons is subdivided
 /// (outside counts as subdivided).
@@ -306,6 +381,18 @@ fn expand(h: &Hierarchy, mut stack: Vec<StateTri>, want: usize) -> Vec<Item> {
     }
 }
 
+/// Whether the cell `key` lies on a line of the lattice of level `k`, that is on an edge of
+/// a lattice triangle of that level (every cell of level `k` or coarser does): the lines run
+/// along the directions (1, 0), (0, 1) and (-1, 1), where j, i or i + j is a multiple of
+/// 2^(key.k - k).
+fn on_lines(key: Key, k: u8) -> bool {
+    if key.k <= k {
+        return true;
+    }
+    let m = (1i64 << (key.k - k)) - 1;
+    key.i & m == 0 || key.j & m == 0 || (key.i + key.j) & m == 0
+}
+
 /// The cell at the midpoint of two adjacent cells of the same level.
 fn midpoint(a: Key, b: Key) -> Key {
     Key::new(a.k + 1, a.i + b.i, a.j + b.j)
@@ -320,6 +407,8 @@ struct Builder<'a> {
     /// Places asked before `moved` (`extract_region_patched`).
     placed: Option<&'a FxHashMap<Key, Point>>,
     moved: &'a FxHashMap<Key, Point>,
+    /// Places asked after `moved` (`extract_relocated`).
+    relocate: Option<Relocate<'a>>,
     /// Centres whose triangles the patch replaces.
     dropped: &'a FxHashSet<Key>,
     /// Every dropped centre is marked `DROPPED` in `index` (none is a vertex yet).
@@ -349,7 +438,9 @@ impl<'a> Builder<'a> {
         // rehashing a table of millions of entries. A part of the dual (`whole` false) is
         // small: its tables grow as needed.
         let expected = if whole { h.full_leaves } else { 0 } + h.points.len();
-        let mut index = KeyIndex::with_capacity(expected);
+        // The dual split over threads indexes few of its vertices (`emit_split`).
+        let split = whole && h.full_leaves >= PARALLEL_EXTRACT_MIN;
+        let mut index = KeyIndex::with_capacity(if split { h.points.len() } else { expected });
         // The vectors get a quarter more: the dual has more vertices than full leaves (at
         // plane-100k its triangles outgrew twice `expected`), and reserved room that is never
         // written costs no memory.
@@ -393,6 +484,7 @@ impl<'a> Builder<'a> {
             h,
             placed: None,
             moved,
+            relocate: None,
             dropped,
             marked,
             keys,
@@ -422,8 +514,11 @@ impl<'a> Builder<'a> {
         if let Some(&p) = self.placed.and_then(|m| m.get(&key)) {
             return p;
         }
-        match self.moved.get(&key) {
-            Some(&p) => p,
+        if let Some(&p) = self.moved.get(&key) {
+            return p;
+        }
+        match self.relocate.and_then(|f| f(key)) {
+            Some(p) => p,
             None => self.h.lattice.center(key),
         }
     }
@@ -487,27 +582,41 @@ impl<'a> Builder<'a> {
 
     /// A new vertex for `key` at `p`.
     fn push_vertex(&mut self, key: Key, p: Point) -> u32 {
-        let v = self.vertices.len() as u32;
-        self.vertices.push(p);
-        self.keys.push(key);
-        self.used.push(true);
+        let v = self.push_unindexed(key, p);
         self.index.insert(key, v);
         v
     }
 
+    /// `push_vertex` of a vertex no later lookup asks for (`absorb`).
+    fn push_unindexed(&mut self, key: Key, p: Point) -> u32 {
+        let v = self.vertices.len() as u32;
+        self.vertices.push(p);
+        self.keys.push(key);
+        self.used.push(true);
+        v
+    }
+
     /// Appends the triangles of `part` (the next part of the recursion in emission order),
-    /// numbering its vertices that are new here in the order the part met them.
-    fn absorb(&mut self, part: Part) {
+    /// numbering its vertices that are new here in the order the part met them. Only the
+    /// vertices for which `indexed` holds are looked up in the index and added to it: the
+    /// others no other part meets (`emit_split`).
+    fn absorb(&mut self, part: Part, indexed: impl Fn(Key) -> bool) {
         let map: Vec<u32> = part
             .vertices
             .iter()
-            .map(|&(key, p)| match self.index.get(&key) {
-                Some(v) => {
-                    debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
-                    self.used[v as usize] = true;
-                    v
+            .map(|&(key, p)| {
+                if !indexed(key) {
+                    debug_assert!(self.index.get(&key).is_none(), "{key:?} met twice");
+                    return self.push_unindexed(key, p);
                 }
-                None => self.push_vertex(key, p),
+                match self.index.get(&key) {
+                    Some(v) => {
+                        debug_assert_ne!(v, DROPPED, "a part used the dropped centre {key:?}");
+                        self.used[v as usize] = true;
+                        v
+                    }
+                    None => self.push_vertex(key, p),
+                }
             })
             .collect();
         self.triangles.reserve(part.triangles.len());
@@ -594,7 +703,7 @@ fn point_at(h: &Hierarchy, key: Key) -> Option<u32> {
 const LOCAL: u32 = 1 << 31;
 
 /// The triangles one thread of `extract_all` emits for its subtrees, with the vertices it met
-/// that the builder's index did not hold, in the order it met them.
+/// that the builder's index did not hold, in the order it met them, with their places.
 #[derive(Default)]
 struct Part {
     index: KeyIndex,
@@ -636,8 +745,39 @@ pub fn first_inverted(mesh: &TriMesh) -> Option<usize> {
 mod tests {
     use super::*;
     use crate::hex::classify::rings;
-    use crate::hex::extended::{mesh_extended, relocations};
+    use crate::hex::extended::{
+        chain_relocations, chain_triangles, mesh_extended, relocated, relocations,
+    };
+    use crate::hex::key::DIRS;
     use crate::{Params, Pslg};
+
+    #[test]
+    fn a_cell_is_on_the_lines_of_a_level_exactly_when_it_lies_on_an_edge_of_its_triangles() {
+        // Level 1 against level 4 (t = 8), every cell of a window, against the edges of the
+        // level-1 triangles around it walked one by one.
+        let (k, fine, t) = (1u8, 4u8, 8i64);
+        let on_an_edge = |i: i64, j: i64| {
+            (-4..4i64).any(|a| {
+                (-4..4i64).any(|b| {
+                    let (pi, pj) = (t * a, t * b);
+                    DIRS[..3].iter().any(|&(di, dj)| {
+                        // (i, j) = P + λ·t·d with 0 ≤ λ ≤ 1.
+                        (0..=t).any(|l| (pi + l * di, pj + l * dj) == (i, j))
+                    })
+                })
+            })
+        };
+        let mut on = 0;
+        for i in -12..12 {
+            for j in -12..12 {
+                let key = Key::new(fine, i, j);
+                assert_eq!(on_lines(key, k), on_an_edge(i, j), "{key:?}");
+                on += on_lines(key, k) as usize;
+            }
+        }
+        assert!(on > 0 && on < 24 * 24);
+        assert!(on_lines(Key::new(1, 1, 0), 1) && on_lines(Key::ROOT, 2));
+    }
 
     #[test]
     fn the_dual_split_over_threads_is_the_serial_dual_byte_for_byte() {
@@ -666,7 +806,7 @@ mod tests {
         );
         for placement in [Placement::Relocated, Placement::Plain] {
             let serial = extract_where(h, placement, &moved, &patch, true, |_| true);
-            let split = extract_all_from(h, placement, &moved, &patch, 0);
+            let split = extract_all_from(h, (placement, None), &moved, (&patch, None), 0);
             assert!(!serial.0.triangles.is_empty());
             assert_eq!(serial.0.triangles, split.0.triangles, "{placement:?}");
             assert_eq!(serial.1, split.1, "{placement:?}");
@@ -677,6 +817,40 @@ mod tests {
                     .collect()
             };
             assert_eq!(bits(&serial.0), bits(&split.0), "{placement:?}");
+        }
+        // The relocated centres computed as the dual meets them, with only the chains' in a
+        // table, give the same dual as the table of every relocated centre, serial or split.
+        let r = rings(h);
+        let (chained, chain_patch, chains) = chain_relocations(h, &r);
+        assert!(
+            chained.len() < moved.len(),
+            "the table holds the chains only"
+        );
+        assert!(chain_patch.triangles.is_empty());
+        assert_eq!(chain_patch.dropped, patch.dropped);
+        let mut streamed = Vec::new();
+        chain_triangles(h, &r, &chains, &mut |t| streamed.push(t));
+        assert_eq!(streamed, patch.triangles);
+        let relocate = |k: Key| relocated(h, &r, k);
+        let later = |emit: &mut dyn FnMut([Key; 3])| chain_triangles(h, &r, &chains, emit);
+        let table = extract_where(h, Placement::Relocated, &moved, &patch, true, |_| true);
+        for min in [0, usize::MAX] {
+            let lazy = extract_all_from(
+                h,
+                (Placement::Relocated, Some(&relocate)),
+                &chained,
+                (&chain_patch, Some(&later)),
+                min,
+            );
+            assert_eq!(table.0.triangles, lazy.0.triangles, "split from {min}");
+            assert_eq!(table.1, lazy.1, "split from {min}");
+            let bits = |m: &TriMesh| -> Vec<u64> {
+                m.vertices
+                    .iter()
+                    .flat_map(|p| [p[0].to_bits(), p[1].to_bits()])
+                    .collect()
+            };
+            assert_eq!(bits(&table.0), bits(&lazy.0), "split from {min}");
         }
     }
 }

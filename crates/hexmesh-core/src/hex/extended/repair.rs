@@ -6,7 +6,7 @@
 //! the splice keep the work of a repair proportional to what it changes.
 
 use super::check::{offending_leaves, BadTriangle};
-use super::relocate::{relocations, relocations_of};
+use super::relocate::{chain_relocations, chain_triangles, relocated, relocations_of};
 use super::rings::{apply_flips, apply_placed, flip, switch_corner, RingCache, RingState};
 use super::rules::{around, extended_actions, Why};
 use super::settle::{polish_rings, record_moves, settle_contested, Moves, SettleCells, SettlePass};
@@ -183,10 +183,13 @@ impl<'a> Repair<'a> {
             return false;
         }
         self.coarsened = true;
-        let leaves = self.h.full_leaves_unordered();
-        let r = self.cache.get(self.h).clone();
-        let tops = blossom::candidate_tops(self.h, &r, &leaves);
-        let merged = blossom::coarsen(self.h, &r, &tops);
+        // The rings are read in place (the coarsening changes the hierarchy, not the cache),
+        // and the full leaves one at a time: at plane-100k a copy of the rings and a list of
+        // the leaves were about 13 and 12 bytes an output triangle.
+        let r = self.cache.get(self.h);
+        let h = &*self.h;
+        let tops = blossom::candidate_tops(h, r, h.full_leaves_iter());
+        let merged = blossom::coarsen(self.h, r, &tops);
         self.stats.blossoms += merged.len() as u64 / 7;
         if merged.is_empty() {
             return false;
@@ -330,9 +333,11 @@ impl<'a> Repair<'a> {
     fn extract(&mut self, r: &Rings, around_all: bool) -> Checked {
         let h = &*self.h;
         let Some(c) = &self.changed else {
-            let (mut moved, patch) = relocations(h, r);
+            let (mut moved, patch, chains) = chain_relocations(h, r);
             apply_placed(&mut moved, self.state);
-            let (mesh, keys) = dual::extract_patched(h, Placement::Relocated, &moved, &patch);
+            let relocate = |k: Key| relocated(h, r, k);
+            let later = |emit: &mut dyn FnMut([Key; 3])| chain_triangles(h, r, &chains, emit);
+            let (mesh, keys) = dual::extract_relocated(h, (&moved, &relocate), &patch, &later);
             return Checked {
                 mesh,
                 keys,

@@ -227,15 +227,15 @@ pub fn star_angles(p: [f64; 2]) -> (f64, f64) {
 /// length, in units of the root side, when given.
 pub fn centre_points(
     tree: &mut Tree,
-    points: u32,
+    points: &[u32],
     (max_area, max_edge): (Option<f64>, Option<f64>),
     guard: &Guard,
 ) -> Result<Vec<Patch>, Stop> {
     loop {
         guard.check(tree)?;
         let mut to_split: BTreeSet<Cell> = BTreeSet::new();
-        let mut patches = Vec::with_capacity(points as usize);
-        for p in 0..points {
+        let mut patches = Vec::with_capacity(points.len());
+        for &p in points {
             if let Some((level, i, j)) = tree.pin(p) {
                 // A boundary vertex needs no patch, only to be a corner of the quad-tree: the
                 // four level-k rhombs around it are leaves of level k or finer where they have

@@ -143,9 +143,14 @@ impl Mesher for Rhomb {
         let mut tree = Tree::new(coords, area_level).with_pins(pins);
         let guard = Guard::new(params.budget);
         let n = input.points.len() as u32;
-        let outcome = tree
-            .split_crowded(&guard)
-            .and_then(|()| centring::centre_points(&mut tree, n, (max_area, max_edge), &guard));
+        let outcome = tree.split_crowded(&guard).and_then(|()| {
+            centring::centre_points(
+                &mut tree,
+                &(0..n).collect::<Vec<u32>>(),
+                (max_area, max_edge),
+                &guard,
+            )
+        });
         let (patches, stop_reason) = match outcome {
             Ok(patches) => (patches, None),
             Err(Stop::Budget(reason)) => (Vec::new(), Some(reason)),

@@ -260,7 +260,12 @@ impl Tree {
 
     /// The leaf holding input point `p`.
     pub fn locate(&self, p: u32) -> Cell {
-        let [s, t] = self.coords[p as usize];
+        self.leaf_at(self.coords[p as usize])
+    }
+
+    /// The leaf holding the point of root coordinates `st` (clamped into the root).
+    pub fn leaf_at(&self, st: [f64; 2]) -> Cell {
+        let [s, t] = st.map(|x| x.clamp(0.0, 1.0 - f64::EPSILON));
         let mut c = Cell::ROOT;
         while !self.leaves.contains_key(&c) {
             let l = c.level + 1;

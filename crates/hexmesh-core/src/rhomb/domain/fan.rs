@@ -14,6 +14,7 @@
 //! fan leaves the lattice as the tree made it and searches the rays' angles and radii.
 
 use super::boxes::{ladder, score, Failure, Vertex};
+use super::fill::{wedge, wedge_triangles, whole_corner, WedgeVertex};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 
 /// How the ladder meets the corner.
@@ -29,97 +30,6 @@ pub enum Tip {
     /// corner on the other (`wedge`), from the whole corner at c outwards; points along V
     /// and W also at distances growing by 5 % from c.
     Wedge,
-}
-
-/// The best way to cut the triangle (c, ws[a], vs[b]) into triangles each with a side along
-/// W or V and its third corner on the other, for every a, b (`ws`, `vs` by distance from c):
-/// the smallest angle's margin over 30° (the angle at c exempt when the corner is sharper
-/// than 30°), or −∞ when there is none. The triangle at c is (c, vs[b0], ws[a0]); each
-/// further one adds a piece of W or of V to the rung below it.
-fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point]) -> Vec<Vec<(f64, WedgeStep)>> {
-    const SPAN: usize = 24;
-    let (na, nb) = (ws.len(), vs.len());
-    let mut best = vec![vec![(f64::NEG_INFINITY, WedgeStep::Tip); nb]; na];
-    for a in 0..na {
-        for b in 0..nb {
-            let tip = if alpha < 30.0 {
-                whole_corner(c, vs[b], ws[a])
-            } else {
-                score(c, vs[b], ws[a]).unwrap_or(f64::NEG_INFINITY)
-            };
-            let mut cell = (tip, WedgeStep::Tip);
-            for a0 in a.saturating_sub(SPAN)..a {
-                if best[a0][b].0 > cell.0 {
-                    if let Some(g) = score(vs[b], ws[a], ws[a0]) {
-                        if best[a0][b].0.min(g) > cell.0 {
-                            cell = (best[a0][b].0.min(g), WedgeStep::W(a0));
-                        }
-                    }
-                }
-            }
-            for b0 in b.saturating_sub(SPAN)..b {
-                if best[a][b0].0 > cell.0 {
-                    if let Some(g) = score(vs[b0], vs[b], ws[a]) {
-                        if best[a][b0].0.min(g) > cell.0 {
-                            cell = (best[a][b0].0.min(g), WedgeStep::V(b0));
-                        }
-                    }
-                }
-            }
-            best[a][b] = cell;
-        }
-    }
-    best
-}
-
-/// How the wedge below rung (a, b) was reached: the triangle at c, or a piece of W from rung
-/// (a0, b), or of V from (a, b0).
-#[derive(Debug, Clone, Copy, PartialEq)]
-enum WedgeStep {
-    Tip,
-    W(usize),
-    V(usize),
-}
-
-/// The margin of triangle (c, p, q) with its angle at c exempt (the whole input corner,
-/// sharper than 30°): the smaller other angle over 30°, or −∞ when it is not
-/// counter-clockwise or an angle exceeds 90°.
-fn whole_corner(c: Point, p: Point, q: Point) -> f64 {
-    if orient2d(c, p, q) <= 0.0 {
-        return f64::NEG_INFINITY;
-    }
-    let (x, y) = (angle_deg(p, q, c), angle_deg(q, c, p));
-    if x.max(y) > 90.0 {
-        return 90.0 - x.max(y);
-    }
-    x.min(y) - 30.0
-}
-
-/// The triangles of the wedge below rung (a, b) of `table`, counter-clockwise.
-fn wedge_triangles(
-    table: &[Vec<(f64, WedgeStep)>],
-    c: Point,
-    ws: &[Point],
-    vs: &[Point],
-    (mut a, mut b): (usize, usize),
-) -> Vec<[Point; 3]> {
-    let mut out = Vec::new();
-    loop {
-        match table[a][b].1 {
-            WedgeStep::Tip => {
-                out.push([c, vs[b], ws[a]]);
-                return out;
-            }
-            WedgeStep::W(a0) => {
-                out.push([vs[b], ws[a], ws[a0]]);
-                a = a0;
-            }
-            WedgeStep::V(b0) => {
-                out.push([vs[b0], vs[b], ws[a]]);
-                b = b0;
-            }
-        }
-    }
 }
 
 /// A corner's triangulation: every triangle between c, W, V and the front,
@@ -325,7 +235,14 @@ pub fn corner(
                 (Place::W(_), Place::V(_)) if tip == Tip::Wedge => {
                     let ws: Vec<Point> = inner[..w_end].iter().rev().copied().collect();
                     let rung = (w_end - 1 - k0, k - v_start);
-                    triangles.extend(wedge_triangles(&cut, c, &ws, &inner[v_start..], rung));
+                    let vs = &inner[v_start..];
+                    triangles.extend(wedge_triangles(&cut, rung).into_iter().map(|t| {
+                        t.map(|x| match x {
+                            WedgeVertex::C => c,
+                            WedgeVertex::W(a) => ws[a],
+                            WedgeVertex::V(b) => vs[b],
+                        })
+                    }));
                 }
                 _ => triangles.push([c, inner[k], inner[k0]]),
             }

@@ -1,0 +1,407 @@
+//! Steps 8–9 of paper 001 (Sec. 4) on the triangulated quad-tree: the lattice's triangles
+//! that a boundary segment touches are deleted with everything outside the domain (step 9),
+//! the corners next to them are moved away from the boundary (Sec. 5.2), and what is kept
+//! ends at fronts, one closed loop around each polygon, which `fill` joins to the segments.
+//!
+//! Moves (Sec. 5.2 case 1, generalised): a kept corner p whose nearest boundary crossing
+//! along its edges (p, a) lies within half of that edge goes to the midpoint of the edge
+//! (p, b) most nearly opposite (at least 150° from (p, a)); for four equal rhombs this is
+//! the paper's move to (p, a_{j+3})/2. A corner with no such edge is deleted. Departure (ours): at rhombs of different sizes the
+//! paper's case 2 (and its neighbours' moves) is replaced by the same rule, and every kept
+//! triangle a move leaves outside [30°, 90°] is deleted too, so the front recedes there.
+//!
+//! A front must be a simple loop: a corner where the kept region touches itself (two front
+//! edges leave it) has its triangles deleted, as have the corners `eroded` by `fill` where
+//! a ladder failed, and those within `clear` lattice sides of an input corner (where `fill`
+//! builds the corner's own triangles).
+
+use std::collections::HashMap;
+
+use super::input::{self, Domain};
+use crate::geom::{angle_deg, dist, orient2d, Point};
+use crate::mesh::TriMesh;
+
+/// The boundary segments bucketed in a uniform grid over their bounding box.
+pub struct Segments {
+    /// Each segment's ends and (polygon, side).
+    pub ends: Vec<[Point; 2]>,
+    pub owner: Vec<(usize, usize)>,
+    origin: Point,
+    cell: f64,
+    nx: usize,
+    ny: usize,
+    cells: Vec<Vec<u32>>,
+}
+
+impl Segments {
+    pub fn new(domain: &Domain) -> Segments {
+        let mut ends = Vec::new();
+        let mut owner = Vec::new();
+        for (k, poly) in domain.polygons.iter().enumerate() {
+            let n = poly.corners.len();
+            for s in 0..n {
+                let (a, b) = (poly.corners[s], poly.corners[(s + 1) % n]);
+                ends.push([domain.points[a as usize], domain.points[b as usize]]);
+                owner.push((k, s));
+            }
+        }
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for e in &ends {
+            for p in e {
+                for d in 0..2 {
+                    lo[d] = lo[d].min(p[d]);
+                    hi[d] = hi[d].max(p[d]);
+                }
+            }
+        }
+        let span = (hi[0] - lo[0]).max(hi[1] - lo[1]).max(f64::MIN_POSITIVE);
+        let per_side = ((ends.len() as f64).sqrt().ceil() as usize).clamp(1, 1024);
+        let cell = span / per_side as f64;
+        let (nx, ny) = (
+            ((hi[0] - lo[0]) / cell) as usize + 1,
+            ((hi[1] - lo[1]) / cell) as usize + 1,
+        );
+        let mut grid = Segments {
+            ends,
+            owner,
+            origin: lo,
+            cell,
+            nx,
+            ny,
+            cells: vec![Vec::new(); nx * ny],
+        };
+        for (k, e) in grid.ends.clone().iter().enumerate() {
+            for c in grid.cells_of(bbox(e)) {
+                grid.cells[c].push(k as u32);
+            }
+        }
+        grid
+    }
+
+    fn cells_of(&self, b: [f64; 4]) -> Vec<usize> {
+        let index =
+            |x: f64, o: f64, n: usize| (((x - o) / self.cell).floor().max(0.0) as usize).min(n - 1);
+        let (x0, x1) = (
+            index(b[0], self.origin[0], self.nx),
+            index(b[2], self.origin[0], self.nx),
+        );
+        let (y0, y1) = (
+            index(b[1], self.origin[1], self.ny),
+            index(b[3], self.origin[1], self.ny),
+        );
+        if b[2] < self.origin[0] || b[3] < self.origin[1] {
+            return Vec::new();
+        }
+        let mut out = Vec::new();
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                out.push(y * self.nx + x);
+            }
+        }
+        out
+    }
+
+    /// The segments whose cells meet the box [x0, y0, x1, y1], each once, ascending.
+    pub fn near(&self, b: [f64; 4]) -> Vec<u32> {
+        let mut out: Vec<u32> = self
+            .cells_of(b)
+            .into_iter()
+            .flat_map(|c| self.cells[c].iter().copied())
+            .collect();
+        out.sort_unstable();
+        out.dedup();
+        out
+    }
+}
+
+/// The bounding box [x0, y0, x1, y1] of some points.
+pub fn bbox(points: &[Point]) -> [f64; 4] {
+    points.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |b, p| {
+            [
+                b[0].min(p[0]),
+                b[1].min(p[1]),
+                b[2].max(p[0]),
+                b[3].max(p[1]),
+            ]
+        },
+    )
+}
+
+/// True when the closed segments pq and ab meet (exact signs).
+pub fn meets(p: Point, q: Point, a: Point, b: Point) -> bool {
+    let (o1, o2) = (orient2d(a, b, p), orient2d(a, b, q));
+    let (o3, o4) = (orient2d(p, q, a), orient2d(p, q, b));
+    let apart = |x: f64, y: f64| (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);
+    if o1 == 0.0 && o2 == 0.0 {
+        let axis = usize::from((p[0] - q[0]).abs() < (p[1] - q[1]).abs());
+        let (lo, hi) = (p[axis].min(q[axis]), p[axis].max(q[axis]));
+        return a[axis].max(b[axis]) >= lo && a[axis].min(b[axis]) <= hi;
+    }
+    !apart(o1, o2) && !apart(o3, o4)
+}
+
+/// Whether segment ab touches the closed triangle t (counter-clockwise).
+fn touches(t: [Point; 3], a: Point, b: Point) -> bool {
+    let within = |p: Point| (0..3).all(|k| orient2d(t[k], t[(k + 1) % 3], p) >= 0.0);
+    within(a) || within(b) || (0..3).any(|k| meets(t[k], t[(k + 1) % 3], a, b))
+}
+
+/// What steps 8–9 keep of the lattice mesh.
+pub struct Cut {
+    /// Every lattice vertex, moved where Sec. 5.2 moves it.
+    pub position: Vec<Point>,
+    /// Each lattice vertex's local side: the mean length of its edges before moving.
+    pub side: Vec<f64>,
+    /// The kept triangles, counter-clockwise.
+    pub kept: Vec<[u32; 3]>,
+    /// The fronts: closed loops of lattice vertices, the kept region on the left.
+    pub loops: Vec<Vec<u32>>,
+}
+
+/// Cuts `mesh` (the quad-tree's triangulation, `fixed` vertices never moved: the single
+/// points) by the domain's boundary.
+pub fn cut(
+    mesh: &TriMesh,
+    domain: &Domain,
+    segments: &Segments,
+    fixed: &[bool],
+    eroded: &[bool],
+    clear: f64,
+) -> Cut {
+    let nv = mesh.vertices.len();
+    let nt = mesh.triangles.len();
+    // Edge adjacency and the neighbours of every vertex.
+    let mut edge: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * nt);
+    let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nv];
+    let mut side = vec![0.0; nv];
+    for (k, t) in mesh.triangles.iter().enumerate() {
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            edge.insert((a, b), k);
+            neighbours[a as usize].push(b);
+            let l = dist(mesh.vertices[a as usize], mesh.vertices[b as usize]);
+            side[a as usize] += l;
+        }
+    }
+    for list in &mut neighbours {
+        list.sort_unstable();
+        list.dedup();
+    }
+    // Mean edge length: each vertex's outgoing edges were summed once per triangle.
+    let mut out_count = vec![0usize; nv];
+    for t in &mesh.triangles {
+        for &v in t {
+            out_count[v as usize] += 1;
+        }
+    }
+    for v in 0..nv {
+        if out_count[v] > 0 {
+            side[v] /= out_count[v] as f64;
+        }
+    }
+    // Triangles a boundary segment touches are deleted (step 8: edges cutting the boundary
+    // go; step 9: the rest outside is found region by region).
+    let touched: Vec<bool> = (0..nt)
+        .map(|k| {
+            let t = mesh.corners(k);
+            segments.near(bbox(&t)).into_iter().any(|s| {
+                touches(
+                    t,
+                    segments.ends[s as usize][0],
+                    segments.ends[s as usize][1],
+                )
+            })
+        })
+        .collect();
+    let rings: Vec<Vec<Point>> = domain
+        .polygons
+        .iter()
+        .map(|p| {
+            p.corners
+                .iter()
+                .map(|&c| domain.points[c as usize])
+                .collect()
+        })
+        .collect();
+    let mut region = vec![usize::MAX; nt];
+    let mut inside_region: Vec<bool> = Vec::new();
+    for start in 0..nt {
+        if touched[start] || region[start] != usize::MAX {
+            continue;
+        }
+        let r = inside_region.len();
+        let t = mesh.corners(start);
+        let centroid = [
+            (t[0][0] + t[1][0] + t[2][0]) / 3.0,
+            (t[0][1] + t[1][1] + t[2][1]) / 3.0,
+        ];
+        let odd = rings
+            .iter()
+            .filter(|ring| input::inside(centroid, ring))
+            .count()
+            % 2
+            == 1;
+        inside_region.push(odd);
+        let mut stack = vec![start];
+        region[start] = r;
+        while let Some(k) = stack.pop() {
+            let t = mesh.triangles[k];
+            for e in 0..3 {
+                if let Some(&o) = edge.get(&(t[(e + 1) % 3], t[e])) {
+                    if !touched[o] && region[o] == usize::MAX {
+                        region[o] = r;
+                        stack.push(o);
+                    }
+                }
+            }
+        }
+    }
+    let mut keep: Vec<bool> = (0..nt)
+        .map(|k| !touched[k] && inside_region[region[k]])
+        .collect();
+    // Moves: a kept corner next to a deleted triangle, its nearest crossing within half an
+    // edge, goes halfway along the most nearly opposite edge.
+    let mut position = mesh.vertices.clone();
+    let mut near_boundary = vec![false; nv];
+    let mut stuck = vec![false; nv];
+    for (t, _) in mesh.triangles.iter().zip(&keep).filter(|x| !*x.1) {
+        for &v in t {
+            near_boundary[v as usize] = true;
+        }
+    }
+    for v in 0..nv {
+        if !near_boundary[v] || fixed[v] {
+            continue;
+        }
+        let p = mesh.vertices[v];
+        let mut nearest: Option<(f64, u32)> = None;
+        for &a in &neighbours[v] {
+            let q = mesh.vertices[a as usize];
+            for s in segments.near(bbox(&[p, q])) {
+                let [b, c] = segments.ends[s as usize];
+                if !meets(p, q, b, c) {
+                    continue;
+                }
+                let (op, oq) = (orient2d(b, c, p), orient2d(b, c, q));
+                let t = if op == oq { 0.0 } else { op / (op - oq) };
+                if nearest.is_none_or(|(u, _)| t < u) {
+                    nearest = Some((t, a));
+                }
+            }
+        }
+        let Some((t, a)) = nearest else { continue };
+        if t >= 0.5 {
+            continue;
+        }
+        let toward = mesh.vertices[a as usize];
+        let opposite = neighbours[v]
+            .iter()
+            .map(|&b| (angle_deg(p, toward, mesh.vertices[b as usize]), b))
+            .fold(None, |best: Option<(f64, u32)>, x| match best {
+                Some(b) if b.0 >= x.0 => Some(b),
+                _ => Some(x),
+            });
+        match opposite {
+            Some((angle, b)) if angle >= 150.0 => {
+                let q = mesh.vertices[b as usize];
+                position[v] = [(p[0] + q[0]) / 2.0, (p[1] + q[1]) / 2.0];
+            }
+            // No edge leads away (a splitting point): too close to stay, it goes.
+            _ => stuck[v] = true,
+        }
+    }
+    // Deleted besides: eroded corners, corners within `clear` sides of an input corner, and
+    // triangles a move left outside the bounds.
+    let near_corner = |v: usize| {
+        let p = position[v];
+        let r = clear * side[v];
+        segments
+            .near([p[0] - r, p[1] - r, p[0] + r, p[1] + r])
+            .into_iter()
+            .any(|s| segments.ends[s as usize].iter().any(|&c| dist(c, p) < r))
+    };
+    let gone: Vec<bool> = (0..nv)
+        .map(|v| eroded[v] || stuck[v] || (near_boundary[v] && !fixed[v] && near_corner(v)))
+        .collect();
+    for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
+        let p = t.map(|v| position[v as usize]);
+        let bounded =
+            super::boxes::score(p[0], p[1], p[2]).is_some_and(|g| g >= -super::boxes::SLACK);
+        if t.iter().any(|&v| gone[v as usize]) || !bounded {
+            *kept = false;
+        }
+    }
+    // Pinches: a corner with two front edges leaving it loses its triangles, until none.
+    loop {
+        let mut leaving = vec![0u8; nv];
+        for k in 0..nt {
+            if !keep[k] {
+                continue;
+            }
+            let t = mesh.triangles[k];
+            for e in 0..3 {
+                let (a, b) = (t[e], t[(e + 1) % 3]);
+                if !edge.get(&(b, a)).is_some_and(|&o| keep[o]) {
+                    leaving[a as usize] += 1;
+                }
+            }
+        }
+        let mut changed = false;
+        for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()) {
+            if *kept && t.iter().any(|&v| leaving[v as usize] > 1) {
+                *kept = false;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    let kept: Vec<[u32; 3]> = (0..nt)
+        .filter(|&k| keep[k])
+        .map(|k| mesh.triangles[k])
+        .collect();
+    let mut next: HashMap<u32, u32> = HashMap::new();
+    for k in 0..nt {
+        if !keep[k] {
+            continue;
+        }
+        let t = mesh.triangles[k];
+        for e in 0..3 {
+            let (a, b) = (t[e], t[(e + 1) % 3]);
+            if !edge.get(&(b, a)).is_some_and(|&o| keep[o]) {
+                next.insert(a, b);
+            }
+        }
+    }
+    let mut starts: Vec<u32> = next.keys().copied().collect();
+    starts.sort_unstable();
+    let mut seen = vec![false; nv];
+    let mut loops = Vec::new();
+    for s in starts {
+        if seen[s as usize] {
+            continue;
+        }
+        let mut l = Vec::new();
+        let mut v = s;
+        while !seen[v as usize] {
+            seen[v as usize] = true;
+            l.push(v);
+            v = next[&v];
+        }
+        loops.push(l);
+    }
+    Cut {
+        position,
+        side,
+        kept,
+        loops,
+    }
+}

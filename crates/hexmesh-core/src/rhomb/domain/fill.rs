@@ -1,0 +1,610 @@
+//! Steps 11 and 13–16 of paper 001 (Sec. 4), ours in their detail: between each polygon
+//! and the front `cut` left around it, one cyclic ladder (`boxes::ladder`) joins the front's
+//! corners to points on the polygon's sides, and each input corner c is met in one of three
+//! ways the ladder chooses between (see `fan`): c is a vertex of the ladder's triangles; a
+//! fan of triangles at c on rays every 10° at radii of half to one and a half lattice sides;
+//! or, below 90°, a wedge of triangles between its two sides from the whole corner at c.
+//!
+//! The candidate points on a side are the feet of the front corners nearest it, the points of
+//! the paper's border-boxes between neighbouring feet (`boxes::box_points`) and, towards a
+//! corner sharper than 90°, points at distances from it growing by 5 %. A ladder that keeps
+//! no [30°, 90°] triangulation names the front corner where its worst triangle is: the caller
+//! erodes it and cuts again.
+
+use super::boxes::{box_points, ladder, score, Failure, Vertex};
+use super::cut::{Cut, Segments};
+use super::input::Domain;
+use crate::geom::{angle_deg, dist, orient2d, Point};
+
+/// A vertex of the filled mesh.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Id {
+    /// A vertex of the lattice mesh (`Cut::position`).
+    Lattice(u32),
+    /// A domain point (an input corner).
+    Point(u32),
+    /// A point the fill adds, in `Fill::steiner`.
+    Steiner(u32),
+}
+
+/// What the fill adds: its points and its triangles, counter-clockwise.
+#[derive(Debug, Default)]
+pub struct Fill {
+    pub steiner: Vec<Point>,
+    pub triangles: Vec<[Id; 3]>,
+}
+
+/// Why a fill failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Stuck {
+    /// The ladder around a polygon fails at this lattice vertex (the caller erodes it).
+    At(u32),
+    /// The fronts do not pair with the polygons one to one: the kept lattice does not
+    /// separate two polygons (one front faces both), or a polygon faces none. The tree must
+    /// be finer at these points.
+    Finer(Vec<Point>),
+}
+
+/// What a point of a polygon's inner chain is.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Place {
+    /// On side `side` (corners[side] → corners[side + 1]) at this distance from its start.
+    Side(usize, f64),
+    /// Corner `j` itself.
+    Corner(usize),
+    /// On a ray of corner `j` at this angle (degrees) from its outgoing side.
+    Ray(usize, f64),
+}
+
+/// The angle of the domain at corner `j` of a ring (degrees, in (0, 360)).
+fn corner_angle(ring: &[Point], j: usize) -> f64 {
+    let n = ring.len();
+    let (w, c, v) = (ring[(j + n - 1) % n], ring[j], ring[(j + 1) % n]);
+    let a = angle_deg(c, v, w);
+    if orient2d(c, v, w) >= 0.0 {
+        a
+    } else {
+        360.0 - a
+    }
+}
+
+/// The margin of triangle (c, p, q) with its angle at c exempt (the whole input corner,
+/// sharper than 30°): the smaller other angle over 30°, or the excess over 90° negated, or
+/// −∞ when it is not counter-clockwise.
+pub fn whole_corner(c: Point, p: Point, q: Point) -> f64 {
+    if orient2d(c, p, q) <= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let (x, y) = (angle_deg(p, q, c), angle_deg(q, c, p));
+    if x.max(y) > 90.0 {
+        return 90.0 - x.max(y);
+    }
+    x.min(y) - 30.0
+}
+
+/// How the wedge below rung (a, b) was reached: the triangle at c, or a piece of W from rung
+/// (a0, b), or of V from (a, b0).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WedgeStep {
+    Tip,
+    W(usize),
+    V(usize),
+}
+
+/// The best way to cut the triangle (c, ws[a], vs[b]) into triangles each with a side along
+/// W or V and its third corner on the other, for every a, b (`ws`, `vs` by distance from
+/// c): the smallest angle's margin over 30° (the angle at c exempt when the corner, `alpha`
+/// degrees, is sharper than 30°), or −∞ when there is none.
+pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point]) -> Vec<Vec<(f64, WedgeStep)>> {
+    const SPAN: usize = 24;
+    let (na, nb) = (ws.len(), vs.len());
+    let mut best = vec![vec![(f64::NEG_INFINITY, WedgeStep::Tip); nb]; na];
+    for a in 0..na {
+        for b in 0..nb {
+            let tip = if alpha < 30.0 {
+                whole_corner(c, vs[b], ws[a])
+            } else {
+                score(c, vs[b], ws[a]).unwrap_or(f64::NEG_INFINITY)
+            };
+            let mut cell = (tip, WedgeStep::Tip);
+            for a0 in a.saturating_sub(SPAN)..a {
+                if best[a0][b].0 > cell.0 {
+                    if let Some(g) = score(vs[b], ws[a], ws[a0]) {
+                        if best[a0][b].0.min(g) > cell.0 {
+                            cell = (best[a0][b].0.min(g), WedgeStep::W(a0));
+                        }
+                    }
+                }
+            }
+            for b0 in b.saturating_sub(SPAN)..b {
+                if best[a][b0].0 > cell.0 {
+                    if let Some(g) = score(vs[b0], vs[b], ws[a]) {
+                        if best[a][b0].0.min(g) > cell.0 {
+                            cell = (best[a][b0].0.min(g), WedgeStep::V(b0));
+                        }
+                    }
+                }
+            }
+            best[a][b] = cell;
+        }
+    }
+    best
+}
+
+/// A corner of a wedge triangle: c, or a point of W or V by its index in `ws` / `vs`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum WedgeVertex {
+    C,
+    W(usize),
+    V(usize),
+}
+
+/// The triangles of the wedge below rung (a, b) of `table`, counter-clockwise.
+pub fn wedge_triangles(
+    table: &[Vec<(f64, WedgeStep)>],
+    (mut a, mut b): (usize, usize),
+) -> Vec<[WedgeVertex; 3]> {
+    use WedgeVertex::{C, V, W};
+    let mut out = Vec::new();
+    loop {
+        match table[a][b].1 {
+            WedgeStep::Tip => {
+                out.push([C, V(b), W(a)]);
+                return out;
+            }
+            WedgeStep::W(a0) => {
+                out.push([V(b), W(a), W(a0)]);
+                a = a0;
+            }
+            WedgeStep::V(b0) => {
+                out.push([V(b0), V(b), W(a)]);
+                b = b0;
+            }
+        }
+    }
+}
+
+/// A corner's wedge: its W and V points (indices into the inner chain, by distance from the
+/// corner) and its table (`wedge`).
+type Wedge = (Vec<usize>, Vec<usize>, Vec<Vec<(f64, WedgeStep)>>);
+
+/// Distances from a corner to the wedge's extra points: from a fifth of a side, growing by
+/// 5 %, up to `end`.
+fn growing(side: f64, end: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut x = 0.2 * side;
+    while x < end {
+        out.push(x);
+        x *= 1.05;
+    }
+    out
+}
+
+/// Fills every polygon's gap to its front (see the module notes). `corner_side[k][j]` is
+/// the lattice side at corner j of polygon k.
+pub fn fill(
+    domain: &Domain,
+    segments: &Segments,
+    cut: &Cut,
+    corner_side: &[Vec<f64>],
+) -> Result<Fill, Stuck> {
+    // Each front goes with the polygon its corners are nearest to (by majority).
+    let mut front_of: Vec<Vec<usize>> = vec![Vec::new(); domain.polygons.len()];
+    let mut finer = Vec::new();
+    for (f, l) in cut.loops.iter().enumerate() {
+        let mut votes = vec![0usize; domain.polygons.len()];
+        let nearest: Vec<Option<usize>> = l
+            .iter()
+            .map(|&v| nearest_side(segments, cut, v, None).map(|(s, _, _)| segments.owner[s].0))
+            .collect();
+        for k in nearest.iter().flatten() {
+            votes[*k] += 1;
+        }
+        let best = (0..votes.len()).max_by_key(|&k| (votes[k], std::cmp::Reverse(k)));
+        if let Some(k) = best.filter(|&k| votes[k] > 0) {
+            front_of[k].push(f);
+            // Corners of this front nearest another polygon: the lattice between the two
+            // polygons is too coarse to keep a triangle there.
+            for (&v, near) in l.iter().zip(&nearest) {
+                if near.is_some_and(|x| x != k) {
+                    finer.push(cut.position[v as usize]);
+                }
+            }
+        }
+    }
+    if !finer.is_empty() {
+        return Err(Stuck::Finer(finer));
+    }
+    let mut out = Fill::default();
+    for (k, fronts) in front_of.iter().enumerate() {
+        // Two fronts facing one polygon: the smaller is an island the cut left between
+        // deleted triangles; eroding it corner by corner joins it to the gap.
+        if fronts.len() > 1 {
+            let smallest = fronts
+                .iter()
+                .min_by_key(|&&f| (cut.loops[f].len(), f))
+                .expect("two");
+            return Err(Stuck::At(cut.loops[*smallest][0]));
+        }
+        if fronts.is_empty() {
+            let poly = &domain.polygons[k];
+            return Err(Stuck::Finer(
+                poly.corners
+                    .iter()
+                    .map(|&c| domain.points[c as usize])
+                    .collect(),
+            ));
+        }
+        fill_polygon(
+            domain,
+            segments,
+            cut,
+            k,
+            &cut.loops[fronts[0]],
+            &corner_side[k],
+            &mut out,
+        )?;
+    }
+    Ok(out)
+}
+
+/// The side nearest lattice vertex v within sixteen of its sides (of polygon `only`, if given):
+/// (segment index, distance along it from its start, distance to it).
+fn nearest_side(
+    segments: &Segments,
+    cut: &Cut,
+    v: u32,
+    only: Option<usize>,
+) -> Option<(usize, f64, f64)> {
+    let p = cut.position[v as usize];
+    let r = 16.0 * cut.side[v as usize];
+    let mut best: Option<(usize, f64, f64)> = None;
+    for s in segments.near([p[0] - r, p[1] - r, p[0] + r, p[1] + r]) {
+        let s = s as usize;
+        if only.is_some_and(|k| segments.owner[s].0 != k) {
+            continue;
+        }
+        let [a, b] = segments.ends[s];
+        let len = dist(a, b);
+        let u = [(b[0] - a[0]) / len, (b[1] - a[1]) / len];
+        let t = ((p[0] - a[0]) * u[0] + (p[1] - a[1]) * u[1]).clamp(0.0, len);
+        let d = dist(p, [a[0] + t * u[0], a[1] + t * u[1]]);
+        if d <= r && best.is_none_or(|x| d < x.2) {
+            best = Some((s, t, d));
+        }
+    }
+    best
+}
+
+/// The cyclic ladder between polygon `k` and its front `front`.
+fn fill_polygon(
+    domain: &Domain,
+    segments: &Segments,
+    cut: &Cut,
+    k: usize,
+    front: &[u32],
+    sides_at: &[f64],
+    out: &mut Fill,
+) -> Result<(), Stuck> {
+    let poly = &domain.polygons[k];
+    let nc = poly.corners.len();
+    let ring: Vec<Point> = poly
+        .corners
+        .iter()
+        .map(|&c| domain.points[c as usize])
+        .collect();
+    let first_segment = segments
+        .owner
+        .iter()
+        .position(|o| o.0 == k)
+        .expect("a side");
+    let length: Vec<f64> = (0..nc).map(|j| dist(ring[j], ring[(j + 1) % nc])).collect();
+    let alpha: Vec<f64> = (0..nc).map(|j| corner_angle(&ring, j)).collect();
+    let at = |side: usize, t: f64| {
+        let (a, b) = (ring[side], ring[(side + 1) % nc]);
+        let f = t / length[side];
+        [a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]
+    };
+    // Each front corner's nearest side of this polygon and its foot there.
+    let found: Vec<Option<(usize, f64, f64)>> = front
+        .iter()
+        .map(|&v| {
+            nearest_side(segments, cut, v, Some(k)).map(|(s, t, d)| (s - first_segment, t, d))
+        })
+        .collect();
+    let feet: Vec<Option<(usize, f64)>> = found.iter().map(|f| f.map(|(s, t, _)| (s, t))).collect();
+    // Start at a corner whose foot lies two of its sides away from both ends of its side.
+    let start = (0..front.len())
+        .find(|&i| {
+            feet[i].is_some_and(|(s, t)| {
+                let room = 2.0 * cut.side[front[i] as usize];
+                t > room && t < length[s] - room
+            })
+        })
+        .ok_or(Stuck::At(front[0]))?;
+    let (s0, t0) = feet[start].expect("a foot");
+    let m = front.len() + 1;
+    let order: Vec<usize> = (0..m).map(|i| (start + i) % front.len()).collect();
+    let fpos: Vec<Point> = order
+        .iter()
+        .map(|&i| cut.position[front[i] as usize])
+        .collect();
+    // The inner chain: from the start foot along the sides, around, back to it.
+    let mut inner: Vec<Point> = Vec::new();
+    let mut place: Vec<Place> = Vec::new();
+    let mut stops: Vec<Vec<f64>> = vec![Vec::new(); nc];
+    for (i, f) in feet.iter().enumerate() {
+        if let Some((s, t)) = *f {
+            stops[s].push(t);
+            let j = (i + 1) % front.len();
+            if let Some((s2, _)) = feet[j] {
+                if s2 == s {
+                    let (a, b) = (ring[s], ring[(s + 1) % nc]);
+                    let (p, q) = (
+                        cut.position[front[i] as usize],
+                        cut.position[front[j] as usize],
+                    );
+                    for x in box_points(p, q, a, b) {
+                        stops[s].push(dist(a, x));
+                    }
+                }
+            }
+        }
+    }
+    for s in 0..nc {
+        let e = (s + 1) % nc;
+        if alpha[s] < 90.0 {
+            stops[s].extend(growing(sides_at[s], length[s] / 2.0));
+        }
+        if alpha[e] < 90.0 {
+            let far = length[s];
+            stops[s].extend(growing(sides_at[e], far / 2.0).into_iter().map(|x| far - x));
+        }
+        stops[s].retain(|&t| t > 0.0 && t < length[s]);
+        stops[s].sort_by(f64::total_cmp);
+        stops[s].dedup();
+    }
+    let push = |inner: &mut Vec<Point>, place: &mut Vec<Place>, pl: Place, p: Point| {
+        inner.push(p);
+        place.push(pl);
+    };
+    push(&mut inner, &mut place, Place::Side(s0, t0), at(s0, t0));
+    for &t in stops[s0].iter().filter(|&&t| t > t0) {
+        push(&mut inner, &mut place, Place::Side(s0, t), at(s0, t));
+    }
+    for step in 1..=nc {
+        let j = (s0 + step) % nc; // the corner at the end of the side before
+        push(&mut inner, &mut place, Place::Corner(j), ring[j]);
+        if alpha[j] >= 60.0 {
+            let (c, v) = (ring[j], ring[(j + 1) % nc]);
+            let base = (v[1] - c[1]).atan2(v[0] - c[0]);
+            let rays = (alpha[j] / 10.0).ceil() as usize;
+            for r in (1..rays).rev() {
+                let theta = alpha[j] * r as f64 / rays as f64;
+                let tt = base + theta.to_radians();
+                for radius in [0.5, 0.75, 1.0, 1.25, 1.5] {
+                    let d = radius * sides_at[j];
+                    push(
+                        &mut inner,
+                        &mut place,
+                        Place::Ray(j, theta),
+                        [c[0] + d * tt.cos(), c[1] + d * tt.sin()],
+                    );
+                }
+            }
+        }
+        let s = j;
+        let last = step == nc;
+        for &t in stops[s].iter().filter(|&&t| !last || t < t0) {
+            push(&mut inner, &mut place, Place::Side(s, t), at(s, t));
+        }
+    }
+    push(&mut inner, &mut place, Place::Side(s0, t0), at(s0, t0));
+    let n = inner.len();
+    // The wedges of corners below 90°: W points (the side before, by distance from c) and V
+    // points (the side after), as indices into `inner`.
+    let mut wedges: Vec<Option<Wedge>> = vec![None; nc];
+    for j in 0..nc {
+        if alpha[j] >= 90.0 {
+            continue;
+        }
+        let w_side = (j + nc - 1) % nc;
+        let reach = length[w_side].min(length[j]) / 2.0;
+        let mut ws: Vec<(f64, usize)> = Vec::new();
+        let mut vs: Vec<(f64, usize)> = Vec::new();
+        for (idx, p) in place.iter().enumerate() {
+            match *p {
+                Place::Side(s, t) if s == w_side && length[s] - t <= reach && idx > 0 => {
+                    ws.push((length[s] - t, idx))
+                }
+                Place::Side(s, t) if s == j && t <= reach && idx + 1 < n => vs.push((t, idx)),
+                _ => {}
+            }
+        }
+        ws.sort_by(|a, b| a.0.total_cmp(&b.0));
+        vs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
+        let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();
+        let table = wedge(ring[j], alpha[j], &wp, &vp);
+        wedges[j] = Some((
+            ws.into_iter().map(|x| x.1).collect(),
+            vs.into_iter().map(|x| x.1).collect(),
+            table,
+        ));
+    }
+    let wedge_value = |j: usize, k0: usize, k1: usize| -> Option<(usize, usize, f64)> {
+        let (ws, vs, table) = wedges[j].as_ref()?;
+        let a = ws.iter().position(|&x| x == k0)?;
+        let b = vs.iter().position(|&x| x == k1)?;
+        let v = table[a][b].0;
+        (v > f64::NEG_INFINITY).then_some((a, b, v))
+    };
+    let link = |k0: usize, k1: usize| -> Option<f64> {
+        let corner_of = |s: usize| (s + 1) % nc; // the corner a side runs into
+        match (place[k0], place[k1]) {
+            (Place::Side(s, t), Place::Side(s1, t1)) if s == s1 && t1 > t => Some(f64::INFINITY),
+            (Place::Side(s, _), Place::Corner(j)) if corner_of(s) == j => Some(f64::INFINITY),
+            (Place::Corner(j), Place::Side(s, _)) if s == j => Some(f64::INFINITY),
+            (Place::Side(s, _), Place::Side(s1, _)) if s1 == corner_of(s) => {
+                let j = s1;
+                if let Some((_, _, v)) = wedge_value(j, k0, k1) {
+                    return Some(v);
+                }
+                let g = if alpha[j] < 30.0 {
+                    whole_corner(ring[j], inner[k1], inner[k0])
+                } else {
+                    score(ring[j], inner[k1], inner[k0]).unwrap_or(f64::NEG_INFINITY)
+                };
+                (g > f64::NEG_INFINITY).then_some(g)
+            }
+            (Place::Side(s, _), Place::Ray(j, _)) if corner_of(s) == j => {
+                score(ring[j], inner[k1], inner[k0])
+            }
+            (Place::Ray(j, a), Place::Ray(j1, b)) if j == j1 && b < a => {
+                score(ring[j], inner[k1], inner[k0])
+            }
+            (Place::Ray(j, _), Place::Side(s, _)) if s == j => score(ring[j], inner[k1], inner[k0]),
+            _ => None,
+        }
+    };
+    // Windows: the inner points within two sides of each front corner, found around the
+    // corner's foot, kept in order along the chain.
+    let index_of_foot = |i: usize| -> Option<usize> {
+        let (s, t) = feet[order[i]]?;
+        place.iter().position(|p| *p == Place::Side(s, t))
+    };
+    let mut window: Vec<(usize, usize)> = Vec::with_capacity(m);
+    let mut anchor = 0usize;
+    for i in 0..m {
+        if let Some(a) = index_of_foot(i) {
+            if i + 1 < m || a == 0 {
+                anchor = if i + 1 == m { n - 1 } else { a };
+            }
+        }
+        // Two sides, and half again the corner's distance to the polygon.
+        let height = found[order[i]].map_or(0.0, |f| f.2);
+        let reach = 2.0 * cut.side[front[order[i]] as usize] + 1.5 * height;
+        let p = fpos[i];
+        let lo_scan = anchor.saturating_sub(600);
+        let hi_scan = (anchor + 600).min(n - 1);
+        let near: Vec<usize> = (lo_scan..=hi_scan)
+            .filter(|&x| dist(p, inner[x]) <= reach)
+            .collect();
+        window.push((
+            near.first().copied().unwrap_or(anchor),
+            near.last().copied().unwrap_or(anchor),
+        ));
+    }
+    window[0].0 = 0;
+    window[m - 1].1 = n - 1;
+    for i in 1..m {
+        window[i].0 = window[i].0.max(window[i - 1].0).min(window[i - 1].1);
+    }
+    for i in (0..m - 1).rev() {
+        window[i].1 = window[i].1.min(window[i + 1].1).max(window[i + 1].0);
+    }
+    let span = 300;
+    let result = ladder(&fpos, &inner, &window, span, &link);
+    if std::env::var("RHOMB_DEBUG").is_ok() || std::env::var("RHOMB_DUMP").is_ok() {
+        if let Err(f) = &result {
+            let i = match f {
+                Failure::Front(i) | Failure::Bounds { at: i, .. } => (*i).min(m - 1),
+            };
+            if std::env::var("RHOMB_DEBUG").is_ok() {
+                eprintln!("polygon {k} front {m} inner {n} start foot side {s0} t {t0}: {f:?}");
+            }
+            if let Some(path) = std::env::var("RHOMB_DUMP")
+                .ok()
+                .filter(|p| !std::path::Path::new(p).exists())
+            {
+                // The kept triangles, the segments and the front near the failure, as JSON.
+                let c = fpos[i];
+                let r = 12.0 * cut.side[front[order[i]] as usize];
+                let near = |p: Point| (p[0] - c[0]).abs() < r && (p[1] - c[1]).abs() < r;
+                let tris: Vec<[Point; 3]> = cut
+                    .kept
+                    .iter()
+                    .map(|t| t.map(|v| cut.position[v as usize]))
+                    .filter(|q| q.iter().any(|&p| near(p)))
+                    .collect();
+                let fr: Vec<(usize, Point)> = (0..m)
+                    .filter(|&d| near(fpos[d]))
+                    .map(|d| (d, fpos[d]))
+                    .collect();
+                let json = format!(
+                    "{{\"centre\": {c:?}, \"r\": {r}, \"at\": {i}, \"tris\": {tris:?}, \"segs\": {:?}, \"front\": {fr:?}}}",
+                    segments.ends
+                );
+                let _ = std::fs::write(&path, json.replace('(', "[").replace(')', "]"));
+            }
+            for d in (i.saturating_sub(3)..(i + 4).min(m))
+                .filter(|_| std::env::var("RHOMB_DEBUG").is_ok())
+            {
+                let (lo, hi) = window[d];
+                eprintln!(
+                    "  front {d} {:?} side {} window {lo}..{hi} {:?} .. {:?}",
+                    fpos[d], cut.side[front[order[d]] as usize], place[lo], place[hi]
+                );
+            }
+        }
+    }
+    let (_, triangles) = result.map_err(|f| match f {
+        Failure::Front(i) | Failure::Bounds { at: i, .. } => Stuck::At(front[order[i.min(m - 1)]]),
+    })?;
+    // Output ids: lattice corners, input corners, and new points (the start foot once).
+    let mut ids: Vec<Option<Id>> = vec![None; n];
+    let mut id_of = |x: usize, out: &mut Fill| -> Id {
+        let x = if x == n - 1 { 0 } else { x };
+        if let Some(id) = ids[x] {
+            return id;
+        }
+        let id = match place[x] {
+            Place::Corner(j) => Id::Point(poly.corners[j]),
+            _ => {
+                out.steiner.push(inner[x]);
+                Id::Steiner(out.steiner.len() as u32 - 1)
+            }
+        };
+        ids[x] = Some(id);
+        id
+    };
+    for t in &triangles {
+        let tri = t.map(|v| match v {
+            Vertex::Front(i) => Id::Lattice(front[order[i]]),
+            Vertex::Segment(x) => id_of(x, out),
+        });
+        out.triangles.push(tri);
+        let [Vertex::Segment(k0), Vertex::Segment(k1), _] = *t else {
+            continue;
+        };
+        match (place[k0], place[k1]) {
+            (Place::Side(s, _), Place::Side(s1, _)) if s == s1 => {}
+            (Place::Side(_, _), Place::Corner(_)) | (Place::Corner(_), Place::Side(_, _)) => {}
+            (Place::Side(_, _), Place::Side(s1, _)) if wedge_value(s1, k0, k1).is_some() => {
+                let (a, b, _) = wedge_value(s1, k0, k1).expect("checked");
+                let (ws, vs, table) = wedges[s1].as_ref().expect("a wedge");
+                for w in wedge_triangles(table, (a, b)) {
+                    let tri = w.map(|x| match x {
+                        WedgeVertex::C => Id::Point(poly.corners[s1]),
+                        WedgeVertex::W(a) => id_of(ws[a], out),
+                        WedgeVertex::V(b) => id_of(vs[b], out),
+                    });
+                    out.triangles.push(tri);
+                }
+            }
+            (_, Place::Side(s1, _)) | (_, Place::Ray(s1, _)) => {
+                let _ = s1;
+                let j = match (place[k0], place[k1]) {
+                    (Place::Ray(j, _), _) | (_, Place::Ray(j, _)) => j,
+                    (_, Place::Side(s, _)) => s,
+                    _ => unreachable!(),
+                };
+                let c = Id::Point(poly.corners[j]);
+                let (a, b) = (id_of(k1, out), id_of(k0, out));
+                out.triangles.push([c, a, b]);
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}

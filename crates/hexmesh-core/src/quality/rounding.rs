@@ -280,7 +280,7 @@ pub fn check_angles(
 
 /// `check_angles` on the triangles `triangles` of `mesh` only (indices into the whole mesh,
 /// which the messages use).
-fn check_triangle_angles(
+pub fn check_triangle_angles(
     mesh: &crate::mesh::TriMesh,
     triangles: impl Iterator<Item = usize>,
     points: &[Point],

@@ -17,7 +17,9 @@
 
 use std::collections::HashMap;
 
+pub use super::input::bbox;
 use super::input::{self, Domain};
+use super::near::meets;
 use crate::geom::{angle_deg, dist, orient2d, Point};
 use crate::mesh::TriMesh;
 
@@ -114,41 +116,8 @@ impl Segments {
     }
 }
 
-/// The bounding box [x0, y0, x1, y1] of some points.
-pub fn bbox(points: &[Point]) -> [f64; 4] {
-    points.iter().fold(
-        [
-            f64::INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::NEG_INFINITY,
-        ],
-        |b, p| {
-            [
-                b[0].min(p[0]),
-                b[1].min(p[1]),
-                b[2].max(p[0]),
-                b[3].max(p[1]),
-            ]
-        },
-    )
-}
-
-/// True when the closed segments pq and ab meet (exact signs).
-pub fn meets(p: Point, q: Point, a: Point, b: Point) -> bool {
-    let (o1, o2) = (orient2d(a, b, p), orient2d(a, b, q));
-    let (o3, o4) = (orient2d(p, q, a), orient2d(p, q, b));
-    let apart = |x: f64, y: f64| (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);
-    if o1 == 0.0 && o2 == 0.0 {
-        let axis = usize::from((p[0] - q[0]).abs() < (p[1] - q[1]).abs());
-        let (lo, hi) = (p[axis].min(q[axis]), p[axis].max(q[axis]));
-        return a[axis].max(b[axis]) >= lo && a[axis].min(b[axis]) <= hi;
-    }
-    !apart(o1, o2) && !apart(o3, o4)
-}
-
 /// Whether segment ab touches the closed triangle t (counter-clockwise).
-fn touches(t: [Point; 3], a: Point, b: Point) -> bool {
+pub fn touches(t: [Point; 3], a: Point, b: Point) -> bool {
     let within = |p: Point| (0..3).all(|k| orient2d(t[k], t[(k + 1) % 3], p) >= 0.0);
     within(a) || within(b) || (0..3).any(|k| meets(t[k], t[(k + 1) % 3], a, b))
 }
@@ -338,20 +307,24 @@ pub fn cut(
             *kept = false;
         }
     }
-    // Pinches: a corner with two front edges leaving it loses its triangles, until none.
-    loop {
-        let mut leaving = vec![0u8; nv];
-        for k in 0..nt {
-            if !keep[k] {
-                continue;
-            }
-            let t = mesh.triangles[k];
+    // The kept triangles' sides whose other side is not kept, the kept region on the left.
+    let front_edges = |keep: &[bool]| -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        for (t, _) in mesh.triangles.iter().zip(keep).filter(|x| *x.1) {
             for e in 0..3 {
                 let (a, b) = (t[e], t[(e + 1) % 3]);
                 if !edge.get(&(b, a)).is_some_and(|&o| keep[o]) {
-                    leaving[a as usize] += 1;
+                    out.push((a, b));
                 }
             }
+        }
+        out
+    };
+    // Pinches: a corner with two front edges leaving it loses its triangles, until none.
+    loop {
+        let mut leaving = vec![0u8; nv];
+        for (a, _) in front_edges(&keep) {
+            leaving[a as usize] += 1;
         }
         let mut changed = false;
         for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()) {
@@ -368,19 +341,7 @@ pub fn cut(
         .filter(|&k| keep[k])
         .map(|k| mesh.triangles[k])
         .collect();
-    let mut next: HashMap<u32, u32> = HashMap::new();
-    for k in 0..nt {
-        if !keep[k] {
-            continue;
-        }
-        let t = mesh.triangles[k];
-        for e in 0..3 {
-            let (a, b) = (t[e], t[(e + 1) % 3]);
-            if !edge.get(&(b, a)).is_some_and(|&o| keep[o]) {
-                next.insert(a, b);
-            }
-        }
-    }
+    let next: HashMap<u32, u32> = front_edges(&keep).into_iter().collect();
     let mut starts: Vec<u32> = next.keys().copied().collect();
     starts.sort_unstable();
     let mut seen = vec![false; nv];

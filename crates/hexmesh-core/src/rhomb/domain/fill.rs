@@ -27,11 +27,13 @@ pub enum Id {
     Steiner(u32),
 }
 
-/// What the fill adds: its points and its triangles, counter-clockwise.
+/// What the fill adds: its points and its triangles, counter-clockwise, and which of them
+/// are whole input corners sharper than 30° (their angle there is the input's).
 #[derive(Debug, Default)]
 pub struct Fill {
     pub steiner: Vec<Point>,
     pub triangles: Vec<[Id; 3]>,
+    pub whole: Vec<usize>,
 }
 
 /// Why a fill failed.
@@ -353,12 +355,19 @@ fn fill_polygon(
     }
     for s in 0..nc {
         let e = (s + 1) % nc;
+        let far = length[s];
         if alpha[s] < 90.0 {
-            stops[s].extend(growing(sides_at[s], length[s] / 2.0));
+            stops[s].extend(growing(sides_at[s], far / 2.0));
         }
         if alpha[e] < 90.0 {
-            let far = length[s];
             stops[s].extend(growing(sides_at[e], far / 2.0).into_iter().map(|x| far - x));
+        }
+        // Near both corners, every tenth of a side out to three sides.
+        for (side, from_end) in [(sides_at[s], false), (sides_at[e], true)] {
+            for q in 2..=30 {
+                let x = (q as f64 / 10.0 * side).min(far / 2.0);
+                stops[s].push(if from_end { far - x } else { x });
+            }
         }
         stops[s].retain(|&t| t > 0.0 && t < length[s]);
         stops[s].sort_by(f64::total_cmp);
@@ -589,6 +598,9 @@ fn fill_polygon(
                         WedgeVertex::W(a) => id_of(ws[a], out),
                         WedgeVertex::V(b) => id_of(vs[b], out),
                     });
+                    if w[0] == WedgeVertex::C && alpha[s1] < 30.0 {
+                        out.whole.push(out.triangles.len());
+                    }
                     out.triangles.push(tri);
                 }
             }
@@ -601,6 +613,11 @@ fn fill_polygon(
                 };
                 let c = Id::Point(poly.corners[j]);
                 let (a, b) = (id_of(k1, out), id_of(k0, out));
+                let whole = alpha[j] < 30.0
+                    && matches!((place[k0], place[k1]), (Place::Side(..), Place::Side(..)));
+                if whole {
+                    out.whole.push(out.triangles.len());
+                }
                 out.triangles.push([c, a, b]);
             }
             _ => {}

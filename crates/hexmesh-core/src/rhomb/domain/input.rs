@@ -66,27 +66,7 @@ pub fn permitted(input: &Pslg) -> Result<Domain, InputError> {
         .map(|l| l.corners.iter().map(|&c| points[c as usize]).collect())
         .collect();
     // A ring can hold a point only inside its bounding box: the exact test runs on few rings.
-    let boxes: Vec<[f64; 4]> = rings
-        .iter()
-        .map(|r| {
-            r.iter().fold(
-                [
-                    f64::INFINITY,
-                    f64::INFINITY,
-                    f64::NEG_INFINITY,
-                    f64::NEG_INFINITY,
-                ],
-                |b, p| {
-                    [
-                        b[0].min(p[0]),
-                        b[1].min(p[1]),
-                        b[2].max(p[0]),
-                        b[3].max(p[1]),
-                    ]
-                },
-            )
-        })
-        .collect();
+    let boxes: Vec<[f64; 4]> = rings.iter().map(|r| bbox(r)).collect();
     let holds = |b: usize, q: Point| {
         let [x0, y0, x1, y1] = boxes[b];
         x0 <= q[0] && q[0] <= x1 && y0 <= q[1] && q[1] <= y1 && inside(q, &rings[b])
@@ -232,6 +212,26 @@ fn oriented(mut l: Polygon, ring: &[Point], outer: bool) -> Polygon {
     }
     l.outer = outer;
     l
+}
+
+/// The bounding box [x0, y0, x1, y1] of some points.
+pub fn bbox(points: &[Point]) -> [f64; 4] {
+    points.iter().fold(
+        [
+            f64::INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NEG_INFINITY,
+        ],
+        |b, p| {
+            [
+                b[0].min(p[0]),
+                b[1].min(p[1]),
+                b[2].max(p[0]),
+                b[3].max(p[1]),
+            ]
+        },
+    )
 }
 
 /// True when `q` lies inside the closed polygon `ring` (crossing count of the ray towards +x,

@@ -94,22 +94,7 @@ pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
         .map(|poly| corner::classes(&domain.points, poly))
         .collect();
     let guard = Guard::new(params.budget);
-    let (tree, frame) = match quad_tree(&domain, &classes, &guard) {
-        Ok(tree) => tree,
-        Err(Stop::Budget(reason)) => {
-            return Err(Error::mesher(super::NAME, format!("stopped: {reason}")))
-        }
-        Err(Stop::Depth) => {
-            return Err(Error::mesher(
-                super::NAME,
-                format!(
-                    "the domain's elements are closer than the lattice's deepest level ({}) \
-                     separates",
-                    super::lattice::MAX_LEVEL
-                ),
-            ))
-        }
-    };
+    let (tree, frame) = quad_tree(&domain, &classes, &guard).map_err(stopped)?;
     let mut count = [0usize; 3];
     for class in classes.iter().flatten() {
         count[match class {
@@ -160,20 +145,10 @@ fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
         .map(|poly| corner::classes(&domain.points, poly))
         .collect();
     let guard = Guard::new(params.budget);
-    let stopped = |stop: Stop| match stop {
-        Stop::Budget(reason) => Error::mesher(super::NAME, format!("stopped: {reason}")),
-        Stop::Depth => Error::mesher(
-            super::NAME,
-            format!(
-                "the domain's elements are closer than the lattice's deepest level ({}) \
-                 separates",
-                super::lattice::MAX_LEVEL
-            ),
-        ),
-    };
     let (mut tree, frame) = quad_tree(&domain, &classes, &guard).map_err(stopped)?;
     let n = domain.points.len();
     let segments = cut::Segments::new(&domain);
+    even_band(&mut tree, &frame, &segments, &guard).map_err(stopped)?;
     let mut rounds = 0usize;
     // Rounds of refinement: the fill asks for finer rhombs where the kept lattice does not
     // separate two polygons; within a round, erosions.
@@ -227,10 +202,17 @@ fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
         }
     };
     let mesh = assemble(&domain, &fixed, &cut, &filled);
-    super::rounding_check(
+    // The whole sharp corners keep the input's angle; every other angle is held to the
+    // bounds within its rounding allowance.
+    let whole: std::collections::BTreeSet<usize> =
+        filled.whole.iter().map(|&t| cut.kept.len() + t).collect();
+    crate::quality::rounding::check_triangle_angles(
         &mesh,
+        (0..mesh.triangles.len()).filter(|t| !whole.contains(t)),
         &domain.points[..input.points.len()],
+        (30.0, 90.0),
         params.max_rounding_deg(),
+        super::NAME,
     )?;
     Ok(crate::mesher::MeshRun {
         mesh,
@@ -239,6 +221,53 @@ fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
         steps: tree.steps,
         elapsed: start.elapsed(),
     })
+}
+
+/// Departure (ours, in place of Sec. 5.1 and 5.2 case 2 for now): every leaf a boundary
+/// segment touches has first neighbours of its own size, the coarser ones split until none
+/// is left. The rhombs along a polygon then change size only away from it, at the price of
+/// the finest size spreading along the boundary.
+#[cfg(test)]
+fn even_band(
+    tree: &mut Tree,
+    frame: &Frame,
+    segments: &cut::Segments,
+    guard: &Guard,
+) -> Result<(), Stop> {
+    use super::lattice::{key, AROUND};
+    use super::tree::Cover;
+    loop {
+        guard.check(tree)?;
+        let mut coarser = std::collections::BTreeSet::new();
+        for c in tree.leaves() {
+            let corner = |di: i64, dj: i64| frame.point(key(c.level, c.i + di, c.j + dj));
+            let halves = [
+                [corner(0, 0), corner(1, 0), corner(0, 1)],
+                [corner(1, 0), corner(1, 1), corner(0, 1)],
+            ];
+            let b = cut::bbox(&[corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)]);
+            let touched = segments.near(b).into_iter().any(|s| {
+                let [p, q] = segments.ends[s as usize];
+                halves.iter().any(|&h| cut::touches(h, p, q))
+            });
+            if !touched {
+                continue;
+            }
+            for &(di, dj) in &AROUND {
+                if let Cover::Leaf(l) = tree.cover(c.offset(di, dj)) {
+                    if l.level < c.level {
+                        coarser.insert(l);
+                    }
+                }
+            }
+        }
+        if coarser.is_empty() {
+            return Ok(());
+        }
+        for l in coarser {
+            tree.split(l)?;
+        }
+    }
 }
 
 /// The side of the leaf holding domain point `c`.
@@ -301,6 +330,21 @@ fn assemble(
     crate::mesh::TriMesh {
         vertices,
         triangles,
+    }
+}
+
+/// The error a stopped quad-tree gives: the budget that ran out, or the lattice's depth.
+fn stopped(stop: Stop) -> Error {
+    match stop {
+        Stop::Budget(reason) => Error::mesher(super::NAME, format!("stopped: {reason}")),
+        Stop::Depth => Error::mesher(
+            super::NAME,
+            format!(
+                "the domain's elements are closer than the lattice's deepest level ({}) \
+                 separates",
+                super::lattice::MAX_LEVEL
+            ),
+        ),
     }
 }
 
@@ -766,10 +810,25 @@ mod attempts {
             ),
             ("pslg-holes' L", super::tests::l_with_holes()),
         ];
+        let datasets = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../datasets");
+        let mut cases = cases;
+        for name in [
+            "pslg-holes",
+            "pslg-nested",
+            "pslg-short-long",
+            "pslg-slit",
+            "pslg-wedge-5",
+            "imr",
+        ] {
+            let input =
+                crate::io::read_input(&datasets.join(format!("{name}.poly"))).expect("dataset");
+            cases.push((name, input));
+        }
         for (name, input) in cases {
+            let start = std::time::Instant::now();
             match checked(&input) {
-                Ok(count) => eprintln!("{name}: {count} triangles"),
-                Err(e) => eprintln!("{name}: {e}"),
+                Ok(count) => eprintln!("{name}: {count} triangles ({:.2?})", start.elapsed()),
+                Err(e) => eprintln!("{name}: {e} ({:.2?})", start.elapsed()),
             }
         }
     }

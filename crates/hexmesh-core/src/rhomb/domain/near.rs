@@ -39,7 +39,7 @@ fn orient(a: Point, b: Point, c: Point, k: i32) -> Exact {
 }
 
 /// True when the closed segments pq and ab meet (exact signs).
-fn meets(p: Point, q: Point, a: Point, b: Point) -> bool {
+pub fn meets(p: Point, q: Point, a: Point, b: Point) -> bool {
     let (o1, o2) = (orient2d(a, b, p), orient2d(a, b, q));
     let (o3, o4) = (orient2d(p, q, a), orient2d(p, q, b));
     let apart = |x: f64, y: f64| (x > 0.0 && y > 0.0) || (x < 0.0 && y < 0.0);

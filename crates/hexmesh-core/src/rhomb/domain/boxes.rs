@@ -196,7 +196,9 @@ pub fn strip(front: &[Point], a: Point, b: Point) -> Result<Strip, Failure> {
             )
         })
         .collect();
-    let (margin, mut triangles) = ladder(front, &on, &window, SPAN, &|_, _| Some(f64::INFINITY))?;
+    let (margin, mut triangles) = ladder(front, &on, &window, (SPAN, &[]), &|_, _| {
+        Some(f64::INFINITY)
+    })?;
     // Keep only the candidates the triangles use.
     let mut renumber = vec![usize::MAX; on.len()];
     let mut on_segment = Vec::new();
@@ -233,7 +235,8 @@ pub fn strip(front: &[Point], a: Point, b: Point) -> Result<Strip, Failure> {
 /// moved corners, in order) above and `inner` below (points on the segments and whatever
 /// lies between them, in order, the domain on the left walking along `inner`). Each
 /// triangle joins a side of one chain to a vertex of the other, counter-clockwise. A side
-/// along `inner` may run from point k0 to a later point k (at most `span` on), leaving out
+/// along `inner` may run from point k0 to a later point k (k0 at least `back[k]`, or `span`
+/// before k when `back` is empty), leaving out
 /// those between, when `link(k0, k)` allows it: `Some(score)` of the triangle that side
 /// brings on its other side (a fan triangle at a corner; infinity when none), `None` when it
 /// may not. Front corner i meets only the inner points of `window[i]` (inclusive). The
@@ -245,7 +248,7 @@ pub fn ladder(
     front: &[Point],
     inner: &[Point],
     window: &[(usize, usize)],
-    span: usize,
+    (span, back): (usize, &[usize]),
     link: &dyn Fn(usize, usize) -> Option<f64>,
 ) -> Result<(f64, Vec<[Vertex; 3]>), Failure> {
     #[derive(Clone, Copy)]
@@ -283,7 +286,8 @@ pub fn ladder(
                     }
                 }
             }
-            for k0 in k.saturating_sub(span).max(lo)..k {
+            let first = back.get(k).copied().unwrap_or(k.saturating_sub(span));
+            for k0 in first.max(lo)..k {
                 let Some((mm, c, _)) = row[k0] else {
                     continue;
                 };

@@ -134,16 +134,25 @@ pub struct Cut {
     pub loops: Vec<Vec<u32>>,
 }
 
-/// Cuts `mesh` (the quad-tree's triangulation, `fixed` vertices never moved: the single
-/// points) by the domain's boundary.
-pub fn cut(
+/// What does not change while `fill` erodes: the adjacency, the triangles inside the domain
+/// and untouched by it, the moves, and the corners deleted whatever is eroded.
+pub struct Prepared {
+    edge: HashMap<(u32, u32), usize>,
+    position: Vec<Point>,
+    side: Vec<f64>,
+    inside: Vec<bool>,
+    gone: Vec<bool>,
+}
+
+/// Prepares the cut of `mesh` (the quad-tree's triangulation, `fixed` vertices never moved:
+/// the single points) by the domain's boundary.
+pub fn prepare(
     mesh: &TriMesh,
     domain: &Domain,
     segments: &Segments,
     fixed: &[bool],
-    eroded: &[bool],
     clear: f64,
-) -> Cut {
+) -> Prepared {
     let nv = mesh.vertices.len();
     let nt = mesh.triangles.len();
     // Edge adjacency and the neighbours of every vertex.
@@ -232,7 +241,7 @@ pub fn cut(
             }
         }
     }
-    let mut keep: Vec<bool> = (0..nt)
+    let keep: Vec<bool> = (0..nt)
         .map(|k| !touched[k] && inside_region[region[k]])
         .collect();
     // Moves: a kept corner next to a deleted triangle, its nearest crossing within half an
@@ -286,8 +295,8 @@ pub fn cut(
             _ => stuck[v] = true,
         }
     }
-    // Deleted besides: eroded corners, corners within `clear` sides of an input corner, and
-    // triangles a move left outside the bounds.
+    // Deleted besides: corners within `clear` sides of an input corner, and those too close
+    // to the boundary to stay (no edge to move along).
     let near_corner = |v: usize| {
         let p = position[v];
         let r = clear * side[v];
@@ -297,8 +306,24 @@ pub fn cut(
             .any(|s| segments.ends[s as usize].iter().any(|&c| dist(c, p) < r))
     };
     let gone: Vec<bool> = (0..nv)
-        .map(|v| eroded[v] || stuck[v] || (near_boundary[v] && !fixed[v] && near_corner(v)))
+        .map(|v| stuck[v] || (near_boundary[v] && !fixed[v] && near_corner(v)))
         .collect();
+    Prepared {
+        edge,
+        position,
+        side,
+        inside: keep,
+        gone,
+    }
+}
+
+/// Cuts the prepared lattice: deletes the triangles at `eroded` corners and those a move
+/// left outside the bounds, then the pinches, and traces the fronts.
+pub fn cut(mesh: &TriMesh, prep: &Prepared, eroded: &[bool]) -> Cut {
+    let (nv, nt) = (mesh.vertices.len(), mesh.triangles.len());
+    let (edge, position, side) = (&prep.edge, &prep.position, &prep.side);
+    let mut keep = prep.inside.clone();
+    let gone: Vec<bool> = (0..nv).map(|v| prep.gone[v] || eroded[v]).collect();
     for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
         let p = t.map(|v| position[v as usize]);
         let bounded =
@@ -360,8 +385,8 @@ pub fn cut(
         loops.push(l);
     }
     Cut {
-        position,
-        side,
+        position: position.clone(),
+        side: side.clone(),
         kept,
         loops,
     }

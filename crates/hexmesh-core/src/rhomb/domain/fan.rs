@@ -219,7 +219,7 @@ pub fn corner(
     for i in (0..last).rev() {
         window[i].1 = window[i].1.min(window[i + 1].1).max(window[i + 1].0);
     }
-    let (margin, ladder) = ladder(front, &inner, &window, n, &link)?;
+    let (margin, ladder) = ladder(front, &inner, &window, (n, &[]), &link)?;
     // Every triangle: the ladder's, and on the far side of each side along the chain that
     // is not a piece of W or V, the fan triangle or the wedge it closes.
     let mut triangles = Vec::with_capacity(ladder.len());

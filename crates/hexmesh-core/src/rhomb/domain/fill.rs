@@ -170,6 +170,20 @@ pub fn wedge_triangles(
 /// corner) and its table (`wedge`).
 type Wedge = (Vec<usize>, Vec<usize>, Vec<Vec<(f64, WedgeStep)>>);
 
+/// How many points back a side along a polygon side may reach (about three boxes).
+const SIDE_SPAN: usize = 48;
+
+/// How far back a side may reach across a corner sharper than 90° (its wedge).
+const SHARP_SPAN: usize = 400;
+
+/// How many rays' points follow the corner at index j of the chain.
+fn tip_len(place: &[Place], j: usize) -> usize {
+    place[j + 1..]
+        .iter()
+        .take_while(|p| matches!(p, Place::Ray(..)))
+        .count()
+}
+
 /// Distances from a corner to the wedge's extra points: from a fifth of a side, growing by
 /// 5 %, up to `end`.
 fn growing(side: f64, end: f64) -> Vec<f64> {
@@ -512,8 +526,33 @@ fn fill_polygon(
     for i in (0..m - 1).rev() {
         window[i].1 = window[i].1.min(window[i + 1].1).max(window[i + 1].0);
     }
-    let span = 300;
-    let result = ladder(&fpos, &inner, &window, span, &link);
+    // How far back a side along the chain may reach: a few boxes along a side; from a
+    // corner's rays or the side after it, back over the whole tip to the side before (far
+    // back at a sharp corner, whose wedge spans many points on both sides).
+    let mut back: Vec<usize> = (0..n).map(|k| k.saturating_sub(SIDE_SPAN)).collect();
+    for (j, _) in place
+        .iter()
+        .enumerate()
+        .filter(|x| matches!(x.1, Place::Corner(_)))
+    {
+        let Place::Corner(c) = place[j] else { continue };
+        let reach = if alpha[c] < 90.0 {
+            SHARP_SPAN
+        } else {
+            SIDE_SPAN
+        };
+        let from = j.saturating_sub(reach);
+        let mut k = j;
+        while k < n
+            && (k == j
+                || matches!(place[k], Place::Ray(..))
+                || k < j + reach + 1 + tip_len(&place, j))
+        {
+            back[k] = back[k].min(from);
+            k += 1;
+        }
+    }
+    let result = ladder(&fpos, &inner, &window, (n, &back), &link);
     if std::env::var("RHOMB_DEBUG").is_ok() || std::env::var("RHOMB_DUMP").is_ok() {
         if let Err(f) = &result {
             let i = match f {

@@ -80,12 +80,7 @@ use input::Domain;
 /// what of the method is missing. The refusals of `input::permitted` are input errors naming
 /// a segment or point.
 pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
-    let domain = input::permitted(input).map_err(Error::input)?;
-    let classes: Vec<Vec<Class>> = domain
-        .polygons
-        .iter()
-        .map(|poly| corner::classes(&domain.points, poly))
-        .collect();
+    let (domain, classes) = read(input)?;
     let guard = Guard::new(params.budget);
     let (tree, frame) = quad_tree(&domain, &classes, &guard).map_err(stopped)?;
     let mut count = [0usize; 3];
@@ -131,12 +126,7 @@ pub fn mesh(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
 #[cfg(test)]
 fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
     let start = std::time::Instant::now();
-    let domain = input::permitted(input).map_err(Error::input)?;
-    let classes: Vec<Vec<Class>> = domain
-        .polygons
-        .iter()
-        .map(|poly| corner::classes(&domain.points, poly))
-        .collect();
+    let (domain, classes) = read(input)?;
     let guard = Guard::new(params.budget);
     let (mut tree, frame) = quad_tree(&domain, &classes, &guard).map_err(stopped)?;
     let n = domain.points.len();
@@ -327,6 +317,17 @@ fn assemble(
     }
 }
 
+/// The permitted domain of `input` (Sec. 3) and its corners' classes, polygon by polygon.
+fn read(input: &Pslg) -> Result<(Domain, Vec<Vec<Class>>)> {
+    let domain = input::permitted(input).map_err(Error::input)?;
+    let classes = domain
+        .polygons
+        .iter()
+        .map(|poly| corner::classes(&domain.points, poly))
+        .collect();
+    Ok((domain, classes))
+}
+
 /// The error a stopped quad-tree gives: the budget that ran out, or the lattice's depth.
 fn stopped(stop: Stop) -> Error {
     match stop {
@@ -472,6 +473,16 @@ fn quad_tree(
 mod tests {
     use super::*;
 
+    /// Appends a closed loop of segments through `points`.
+    pub fn ring(points: &[[f64; 2]], input: &mut Pslg) {
+        let base = input.points.len() as u32;
+        let n = points.len() as u32;
+        input.points.extend_from_slice(points);
+        input
+            .segments
+            .extend((0..n).map(|k| [base + k, base + (k + 1) % n]));
+    }
+
     /// `pslg-holes`' shape: an L with a square hole and a triangular one, each seeded.
     pub fn l_with_holes() -> Pslg {
         let loops: [&[[f64; 2]]; 3] = [
@@ -493,12 +504,7 @@ mod tests {
         ];
         let mut input = Pslg::default();
         for l in loops {
-            let base = input.points.len() as u32;
-            let n = l.len() as u32;
-            input.points.extend_from_slice(l);
-            input
-                .segments
-                .extend((0..n).map(|k| [base + k, base + (k + 1) % n]));
+            ring(l, &mut input);
         }
         input.holes = vec![[1.4375, 0.375], [0.4167, 1.104]];
         input
@@ -693,14 +699,7 @@ mod tests {
 mod attempts {
     use super::*;
 
-    fn ring(points: &[[f64; 2]], input: &mut Pslg) {
-        let base = input.points.len() as u32;
-        let n = points.len() as u32;
-        input.points.extend_from_slice(points);
-        input
-            .segments
-            .extend((0..n).map(|k| [base + k, base + (k + 1) % n]));
-    }
+    use super::tests::ring;
 
     fn domain(loops: &[&[[f64; 2]]], holes: &[[f64; 2]], singles: &[[f64; 2]]) -> Pslg {
         let mut input = Pslg::default();

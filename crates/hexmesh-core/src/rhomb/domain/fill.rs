@@ -643,13 +643,9 @@ fn fill_polygon(
                     out.triangles.push(tri);
                 }
             }
-            (_, Place::Side(s1, _)) | (_, Place::Ray(s1, _)) => {
-                let _ = s1;
-                let j = match (place[k0], place[k1]) {
-                    (Place::Ray(j, _), _) | (_, Place::Ray(j, _)) => j,
-                    (_, Place::Side(s, _)) => s,
-                    _ => unreachable!(),
-                };
+            // A fan triangle at corner j: of the rays' corner, or of the side the chain
+            // passes on to.
+            (Place::Ray(j, _), _) | (_, Place::Ray(j, _)) | (_, Place::Side(j, _)) => {
                 let c = Id::Point(poly.corners[j]);
                 let (a, b) = (id_of(k1, out), id_of(k0, out));
                 let whole = alpha[j] < 30.0

@@ -6,9 +6,10 @@
 //! Moves (Sec. 5.2 case 1, generalised): a kept corner p whose nearest boundary crossing
 //! along its edges (p, a) lies within half of that edge goes to the midpoint of the edge
 //! (p, b) most nearly opposite (at least 150° from (p, a)); for four equal rhombs this is
-//! the paper's move to (p, a_{j+3})/2. A corner with no such edge is deleted. Departure (ours): at rhombs of different sizes the
-//! paper's case 2 (and its neighbours' moves) is replaced by the same rule, and every kept
-//! triangle a move leaves outside [30°, 90°] is deleted too, so the front recedes there.
+//! the paper's move to (p, a_{j+3})/2. A corner with no such edge is deleted. Departure
+//! (ours): at rhombs of different sizes the paper's case 2 (and its neighbours' moves) is
+//! replaced by the same rule, and every kept triangle a move leaves outside [30°, 90°] is
+//! deleted too, so the front recedes there.
 //!
 //! A front must be a simple loop: a corner where the kept region touches itself (two front
 //! edges leave it) has its triangles deleted, as have the corners `eroded` by `fill` where

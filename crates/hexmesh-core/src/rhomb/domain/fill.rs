@@ -6,8 +6,9 @@
 //! or, below 90°, a wedge of triangles between its two sides from the whole corner at c.
 //!
 //! The candidate points on a side are the feet of the front corners nearest it, the points of
-//! the paper's border-boxes between neighbouring feet (`boxes::box_points`) and, towards a
-//! corner sharper than 90°, points at distances from it growing by 5 %. A ladder that keeps
+//! the paper's border-boxes between neighbouring feet (`boxes::box_points`), points every
+//! tenth of a lattice side out to three sides from each corner and, towards a corner sharper
+//! than 90°, points at distances from it growing by 5 %. A ladder that keeps
 //! no [30°, 90°] triangulation names the front corner where its worst triangle is: the caller
 //! erodes it and cuts again.
 

@@ -330,12 +330,18 @@ fn hex_fails_a_domain_mesh_with_29_9_degrees_at_a_segment_or_a_split_sharp_corne
         "FAIL max angle near segments (deg)",
     );
     // The same 10° corner taken whole is the input's, and passes.
-    let (code, text) = verify("sharp_corner_whole", &[&hex[..], &[&wedge]].concat());
-    assert_eq!(code, 0, "{text}");
-    assert!(
-        text.contains("1 whole sharp input corner left out"),
-        "{text}"
+    assert_whole_corner_passes(
+        &[&hex[..], &[&wedge]].concat(),
+        "1 whole sharp input corner left out",
     );
+}
+
+/// `sharp_corner_whole` (the 10° corner of `sharp_corner_input.poly` as its own triangle)
+/// passes verify with `args`, which say it left the corner out with `needle`.
+fn assert_whole_corner_passes(args: &[&str], needle: &str) {
+    let (code, text) = verify("sharp_corner_whole", args);
+    assert_eq!(code, 0, "{text}");
+    assert!(text.contains(needle), "{text}");
 }
 
 /// rhomb's domain promise (paper 001): every angle in [30°, 90°], near the segments too, but
@@ -344,41 +350,28 @@ fn hex_fails_a_domain_mesh_with_29_9_degrees_at_a_segment_or_a_split_sharp_corne
 /// `--bounds rhomb`; the same corner whole passes.
 #[test]
 fn rhomb_fails_a_domain_mesh_with_29_99_or_90_01_degrees_or_a_split_sharp_corner() {
-    let rhomb = |input: &str| {
-        vec![
-            "--bounds".to_string(),
-            "rhomb".into(),
-            "--input".into(),
-            fixture(input),
-        ]
-    };
-    let caught = |name: &str, input: &str, needle: &str| {
-        let args = rhomb(input);
-        let args: Vec<&str> = args.iter().map(String::as_str).collect();
-        assert_caught(name, &args, needle);
-    };
-    caught(
+    let rect = fixture("near_segment_29_99_input.poly");
+    let boxed = fixture("border_box_90_01_input.poly");
+    let wedge = fixture("sharp_corner_input.poly");
+    let rhomb = ["--bounds", "rhomb", "--input"];
+    assert_caught(
         "near_segment_29_99",
-        "near_segment_29_99_input.poly",
+        &[&rhomb[..], &[&rect]].concat(),
         "FAIL min angle (deg): worst triangle 1",
     );
-    caught(
+    assert_caught(
         "border_box_90_01",
-        "border_box_90_01_input.poly",
+        &[&rhomb[..], &[&boxed]].concat(),
         "FAIL max angle (deg): worst triangle 2",
     );
-    caught(
+    assert_caught(
         "sharp_corner_split",
-        "sharp_corner_input.poly",
+        &[&rhomb[..], &[&wedge]].concat(),
         "FAIL min angle (deg)",
     );
-    let args = rhomb("sharp_corner_input.poly");
-    let args: Vec<&str> = args.iter().map(String::as_str).collect();
-    let (code, text) = verify("sharp_corner_whole", &args);
-    assert_eq!(code, 0, "{text}");
-    assert!(
-        text.contains("1 angle at input corners sharper than the bound, taken whole"),
-        "{text}"
+    assert_whole_corner_passes(
+        &[&rhomb[..], &[&wedge]].concat(),
+        "1 angle at input corners sharper than the bound, taken whole",
     );
 }
 

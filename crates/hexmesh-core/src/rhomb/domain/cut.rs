@@ -73,8 +73,8 @@ impl Segments {
             ny,
             cells: vec![Vec::new(); nx * ny],
         };
-        for (k, e) in grid.ends.clone().iter().enumerate() {
-            for c in grid.cells_of(bbox(e)) {
+        for k in 0..grid.ends.len() {
+            for c in grid.cells_of(bbox(&grid.ends[k])) {
                 grid.cells[c].push(k as u32);
             }
         }
@@ -124,11 +124,11 @@ pub fn touches(t: [Point; 3], a: Point, b: Point) -> bool {
 }
 
 /// What steps 8–9 keep of the lattice mesh.
-pub struct Cut {
+pub struct Cut<'a> {
     /// Every lattice vertex, moved where Sec. 5.2 moves it.
-    pub position: Vec<Point>,
+    pub position: &'a [Point],
     /// Each lattice vertex's local side: the mean length of its edges before moving.
-    pub side: Vec<f64>,
+    pub side: &'a [f64],
     /// The kept triangles, counter-clockwise.
     pub kept: Vec<[u32; 3]>,
     /// The fronts: closed loops of lattice vertices, the kept region on the left.
@@ -320,9 +320,9 @@ pub fn prepare(
 
 /// Cuts the prepared lattice: deletes the triangles at `eroded` corners and those a move
 /// left outside the bounds, then the pinches, and traces the fronts.
-pub fn cut(mesh: &TriMesh, prep: &Prepared, eroded: &[bool]) -> Cut {
+pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
     let (nv, nt) = (mesh.vertices.len(), mesh.triangles.len());
-    let (edge, position, side) = (&prep.edge, &prep.position, &prep.side);
+    let (edge, position, side) = (&prep.edge, &prep.position[..], &prep.side[..]);
     let mut keep = prep.inside.clone();
     let gone: Vec<bool> = (0..nv).map(|v| prep.gone[v] || eroded[v]).collect();
     for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
@@ -386,8 +386,8 @@ pub fn cut(mesh: &TriMesh, prep: &Prepared, eroded: &[bool]) -> Cut {
         loops.push(l);
     }
     Cut {
-        position: position.clone(),
-        side: side.clone(),
+        position,
+        side,
         kept,
         loops,
     }

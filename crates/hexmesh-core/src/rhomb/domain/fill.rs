@@ -12,6 +12,8 @@
 //! no [30°, 90°] triangulation names the front corner where its worst triangle is: the caller
 //! erodes it and cuts again.
 
+use std::collections::HashMap;
+
 use super::boxes::{box_points, ladder, score, Failure, Vertex};
 use super::cut::{Cut, Segments};
 use super::input::Domain;
@@ -428,6 +430,7 @@ fn fill_polygon(
     // The wedges of corners below 90°: W points (the side before, by distance from c) and V
     // points (the side after), as indices into `inner`.
     let mut wedges: Vec<Option<Wedge>> = vec![None; nc];
+    let (mut w_pos, mut v_pos) = (vec![None; n], vec![None; n]);
     for j in 0..nc {
         if alpha[j] >= 90.0 {
             continue;
@@ -450,16 +453,22 @@ fn fill_polygon(
         let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
         let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();
         let table = wedge(ring[j], alpha[j], &wp, &vp);
+        for (a, x) in ws.iter().enumerate() {
+            w_pos[x.1] = Some(a);
+        }
+        for (b, x) in vs.iter().enumerate() {
+            v_pos[x.1] = Some(b);
+        }
         wedges[j] = Some((
             ws.into_iter().map(|x| x.1).collect(),
             vs.into_iter().map(|x| x.1).collect(),
             table,
         ));
     }
+    // A point of W (V) belongs to the wedge of the corner its side runs into (starts from).
     let wedge_value = |j: usize, k0: usize, k1: usize| -> Option<(usize, usize, f64)> {
-        let (ws, vs, table) = wedges[j].as_ref()?;
-        let a = ws.iter().position(|&x| x == k0)?;
-        let b = vs.iter().position(|&x| x == k1)?;
+        let (_, _, table) = wedges[j].as_ref()?;
+        let (a, b) = (w_pos[k0]?, v_pos[k1]?);
         let v = table[a][b].0;
         (v > f64::NEG_INFINITY).then_some((a, b, v))
     };
@@ -493,17 +502,22 @@ fn fill_polygon(
     };
     // Windows: the inner points within two sides of each front corner, found around the
     // corner's foot, kept in order along the chain.
-    let index_of_foot = |i: usize| -> Option<usize> {
-        let (s, t) = feet[order[i]]?;
-        place.iter().position(|p| *p == Place::Side(s, t))
-    };
+    let mut index_of_point: HashMap<(usize, u64), usize> = HashMap::with_capacity(n);
+    for (k, p) in place.iter().enumerate() {
+        if let Place::Side(s, t) = *p {
+            index_of_point.entry((s, t.to_bits())).or_insert(k);
+        }
+    }
     let mut window: Vec<(usize, usize)> = Vec::with_capacity(m);
     let mut anchor = 0usize;
     for i in 0..m {
-        if let Some(a) = index_of_foot(i) {
-            if i + 1 < m || a == 0 {
-                anchor = if i + 1 == m { n - 1 } else { a };
-            }
+        // The last front corner is the first again: its foot ends the chain.
+        if i + 1 == m {
+            anchor = n - 1;
+        } else if let Some(a) =
+            feet[order[i]].and_then(|(s, t)| index_of_point.get(&(s, t.to_bits())))
+        {
+            anchor = *a;
         }
         // Two sides, and half again the corner's distance to the polygon.
         let height = found[order[i]].map_or(0.0, |f| f.2);

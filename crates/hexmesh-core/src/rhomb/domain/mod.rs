@@ -135,7 +135,7 @@ fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
     let mut rounds = 0usize;
     // Rounds of refinement: the fill asks for finer rhombs where the kept lattice does not
     // separate two polygons; within a round, erosions.
-    let (fixed, cut, filled) = 'refine: loop {
+    let (mesh, whole) = 'refine: loop {
         guard.check(&tree).map_err(stopped)?;
         let patches =
             super::centring::centre_points(&mut tree, &domain.singles, (None, None), &guard)
@@ -159,7 +159,12 @@ fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
         loop {
             let cut = cut::cut(&lattice, &prepared, &eroded);
             match fill::fill(&domain, &segments, &cut, &corner_side) {
-                Ok(f) => break 'refine (fixed, cut, f),
+                Ok(f) => {
+                    // The whole sharp corners, by their index in the output.
+                    let whole: std::collections::BTreeSet<usize> =
+                        f.whole.iter().map(|&t| cut.kept.len() + t).collect();
+                    break 'refine (assemble(&domain, &fixed, &cut, &f), whole);
+                }
                 Err(fill::Stuck::At(v)) if rounds < MAX_EROSIONS && !eroded[v as usize] => {
                     eroded[v as usize] = true;
                     rounds += 1;
@@ -185,11 +190,8 @@ fn attempt(input: &Pslg, params: &Params) -> Result<crate::mesher::MeshRun> {
             }
         }
     };
-    let mesh = assemble(&domain, &fixed, &cut, &filled);
     // The whole sharp corners keep the input's angle; every other angle is held to the
     // bounds within its rounding allowance.
-    let whole: std::collections::BTreeSet<usize> =
-        filled.whole.iter().map(|&t| cut.kept.len() + t).collect();
     crate::quality::rounding::check_triangle_angles(
         &mesh,
         (0..mesh.triangles.len()).filter(|t| !whole.contains(t)),

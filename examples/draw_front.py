@@ -4,7 +4,8 @@ The test `attempt_survey` of crates/hexmesh-core/src/rhomb/domain (run with
 RHOMB_DUMP=FILE) writes the first failed ladder's neighbourhood as JSON: the kept
 lattice triangles, the boundary segments and the front corners around the corner where
 the ladder failed. This script paints them with numpy only (no imaging library):
-kept triangles grey, segments blue, front corners black, the failing one red and its
+kept triangles grey, segments blue, the candidate points of the inner chain green,
+front corners black, the failing one red and its
 three neighbours on each side orange.
 
     python3 examples/draw_front.py FILE.json OUT.png
@@ -55,6 +56,12 @@ def main(source, target):
             line(q[k], q[(k + 1) % 3], (150, 150, 150))
     for s in dump["segs"]:
         line(s[0], s[1], (0, 0, 255), 2)
+    for p in dump.get("inner", []):
+        x, y = pixel(p)
+        for dx in range(-1, 2):
+            for dy in range(-1, 2):
+                if 0 <= int(x) + dx < SIZE and 0 <= int(y) + dy < SIZE:
+                    img[int(y) + dy, int(x) + dx] = (0, 160, 0)
     at = dump["at"]
     for i, p in dump["front"]:
         x, y = pixel(p)

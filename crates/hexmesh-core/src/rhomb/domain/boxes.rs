@@ -23,7 +23,7 @@
 //! Everything here is computed in f64 on the moved positions; a triangle is accepted only
 //! with a positive exact orientation and every angle within `SLACK` of the bounds.
 
-use crate::geom::{angle_deg, orient2d, Point};
+use crate::geom::{angle_deg, dist, orient2d, Point};
 
 /// How far (degrees) an angle computed in f64 may lie beyond [30°, 90°] and still count as
 /// on it: exact constructions (a foot's right angle, the 30° of a BB_1 box at its extreme)
@@ -77,9 +77,20 @@ pub fn score(a: Point, b: Point, c: Point) -> Option<f64> {
     if orient2d(a, b, c) <= 0.0 {
         return None;
     }
-    let angles = [angle_deg(a, b, c), angle_deg(b, c, a), angle_deg(c, a, b)];
-    let min = angles.iter().copied().fold(f64::INFINITY, f64::min);
-    let max = angles.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    // The smallest angle is opposite the shortest side and the largest opposite the
+    // longest: two angles, not three (ties give the same angle either way).
+    let (ab, bc, ca) = (dist(a, b), dist(b, c), dist(c, a));
+    let opposite = |side: f64| {
+        if side == ab {
+            angle_deg(c, a, b)
+        } else if side == bc {
+            angle_deg(a, b, c)
+        } else {
+            angle_deg(b, c, a)
+        }
+    };
+    let min = opposite(ab.min(bc).min(ca));
+    let max = opposite(ab.max(bc).max(ca));
     Some((min - 30.0).min(if max > 90.0 {
         90.0 - max
     } else {
@@ -257,56 +268,77 @@ pub fn ladder(
         Front(usize),   // from (i − 1, k): triangle (s_k, p_i, p_{i−1})
         Segment(usize), // from (i, k'): triangle (s_k', s_k, p_i)
     }
+    type Cell = Option<(f64, usize, Step)>;
     let (m, n) = (front.len(), inner.len());
-    // best[i][k]: the best (margin, triangle count, step) of a ladder from the start to the
-    // edge (front i, inner k).
-    let mut best: Vec<Vec<Option<(f64, usize, Step)>>> = Vec::with_capacity(m);
+    // best[i]: for k in its window (from `lo`), the best (margin, triangle count, step) of a
+    // ladder from the start to the edge (front i, inner k). Only the window is stored: a
+    // polygon's chain may hold tens of thousands of points.
+    let mut best: Vec<(usize, Vec<Cell>)> = Vec::with_capacity(m);
+    let get = |best: &[(usize, Vec<Cell>)], i: usize, k: usize| -> Cell {
+        let (lo, row) = &best[i];
+        k.checked_sub(*lo)
+            .and_then(|x| row.get(x).copied())
+            .flatten()
+    };
     for i in 0..m {
-        let mut row: Vec<Option<(f64, usize, Step)>> = vec![None; n];
         let (lo, hi) = window[i];
-        for k in lo..=hi.min(n - 1) {
-            let mut cell: Option<(f64, usize, Step)> = None;
-            let mut take = |cand: (f64, usize, Step)| {
-                let better = match cell {
+        let hi = hi.min(n - 1);
+        let mut row: Vec<Cell> = vec![None; (hi + 1).saturating_sub(lo)];
+        for k in lo..=hi {
+            let mut cell: Cell = None;
+            let take = |cell: &mut Cell, cand: (f64, usize, Step)| {
+                let better = match *cell {
                     None => true,
                     // Larger margin first, then fewer triangles.
                     Some((mm, c, _)) => cand.0 > mm || (cand.0 == mm && cand.1 < c),
                 };
                 if better {
-                    cell = Some(cand);
+                    *cell = Some(cand);
                 }
             };
             if i == 0 && k == window[0].0 {
-                take((f64::INFINITY, 0, Step::Start));
+                take(&mut cell, (f64::INFINITY, 0, Step::Start));
             }
+            // A candidate whose path is already worse than the cell cannot win: its score
+            // (two arc tangents) is not needed.
+            let hopeless = |cell: &Cell, mm: f64, c: usize| {
+                cell.is_some_and(|(best, count, _)| mm < best || (mm == best && c + 1 >= count))
+            };
             if i > 0 {
-                if let Some((mm, c, _)) = best[i - 1][k] {
-                    if let Some(g) = score(inner[k], front[i], front[i - 1]) {
-                        take((mm.min(g), c + 1, Step::Front(k)));
+                if let Some((mm, c, _)) = get(&best, i - 1, k) {
+                    if hopeless(&cell, mm, c) {
+                    } else if let Some(g) = score(inner[k], front[i], front[i - 1]) {
+                        take(&mut cell, (mm.min(g), c + 1, Step::Front(k)));
                     }
                 }
             }
             let first = back.get(k).copied().unwrap_or(k.saturating_sub(span));
             for k0 in first.max(lo)..k {
-                let Some((mm, c, _)) = row[k0] else {
+                let Some((mm, c, _)) = row[k0 - lo] else {
                     continue;
                 };
+                if hopeless(&cell, mm, c) {
+                    continue;
+                }
                 let Some(extra) = link(k0, k) else {
                     continue;
                 };
                 if let Some(g) = score(inner[k0], inner[k], front[i]) {
-                    take((mm.min(g).min(extra), c + 1, Step::Segment(k0)));
+                    take(&mut cell, (mm.min(g).min(extra), c + 1, Step::Segment(k0)));
                 }
             }
-            row[k] = cell;
+            row[k - lo] = cell;
         }
-        best.push(row);
+        best.push((lo, row));
     }
     let end = window[m - 1].1;
-    let Some((value, _, _)) = best[m - 1].get(end).copied().flatten() else {
-        let i = (0..m).rev().find(|&i| best[i].iter().any(Option::is_some));
+    let Some((value, _, _)) = get(&best, m - 1, end) else {
+        let i = (0..m)
+            .rev()
+            .find(|&i| best[i].1.iter().any(Option::is_some));
         let margin = i.map_or(f64::NEG_INFINITY, |i| {
             best[i]
+                .1
                 .iter()
                 .flatten()
                 .map(|e| e.0)
@@ -321,7 +353,7 @@ pub fn ladder(
     let mut worst = (f64::INFINITY, 0);
     let (mut i, mut k) = (m - 1, end);
     loop {
-        match best[i][k].expect("on the path").2 {
+        match get(&best, i, k).expect("on the path").2 {
             Step::Start => break,
             Step::Front(k0) => {
                 let g = score(inner[k0], front[i], front[i - 1]).unwrap_or(f64::NEG_INFINITY);
@@ -344,6 +376,20 @@ pub fn ladder(
         }
     }
     if value < -SLACK {
+        if std::env::var("RHOMB_DEBUG").is_ok() {
+            // The path's triangles at its worst margin.
+            let at = |v: Vertex| match v {
+                Vertex::Front(i) => front[i],
+                Vertex::Segment(k) => inner[k],
+            };
+            for t in &triangles {
+                let [p, q, r] = t.map(at);
+                let g = score(p, q, r).unwrap_or(f64::NEG_INFINITY);
+                if g <= value + SLACK {
+                    eprintln!("  worst {t:?} {:?} margin {g}", [p, q, r]);
+                }
+            }
+        }
         return Err(Failure::Bounds {
             at: worst.1,
             margin: value,

@@ -332,14 +332,20 @@ fn fill_polygon(
         })
         .collect();
     let feet: Vec<Option<(usize, f64)>> = found.iter().map(|f| f.map(|(s, t, _)| (s, t))).collect();
-    // Start at a corner whose foot lies two of its sides away from both ends of its side.
+    // Start at the front corner whose foot is farthest from the tips of its side's corners
+    // (four lattice sides at each: the chain's last stretch must not cut a corner's fan or
+    // wedge short), and at least two of its own sides from either.
+    let clearance = |i: usize| -> Option<f64> {
+        let (s, t) = feet[i]?;
+        let own = 2.0 * cut.side[front[i] as usize];
+        let c = (t - own.max(4.0 * sides_at[s]))
+            .min(length[s] - t - own.max(4.0 * sides_at[(s + 1) % nc]));
+        (c > 0.0).then_some(c)
+    };
     let start = (0..front.len())
-        .find(|&i| {
-            feet[i].is_some_and(|(s, t)| {
-                let room = 2.0 * cut.side[front[i] as usize];
-                t > room && t < length[s] - room
-            })
-        })
+        .filter_map(|i| clearance(i).map(|c| (c, i)))
+        .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)))
+        .map(|x| x.1)
         .ok_or(Stuck::At(front[0]))?;
     let (s0, t0) = feet[start].expect("a foot");
     let m = front.len() + 1;
@@ -398,6 +404,18 @@ fn fill_polygon(
     for &t in stops[s0].iter().filter(|&&t| t > t0) {
         push(&mut inner, &mut place, Place::Side(s0, t), at(s0, t));
     }
+    // The fan's radii are in units of the corner's lattice side, or less where the front
+    // comes closer (a finer lattice beside the corner than at it): the outer ray points stay
+    // inside the gap.
+    let fan_unit: Vec<f64> = (0..nc)
+        .map(|j| {
+            let gap = fpos
+                .iter()
+                .map(|&p| dist(p, ring[j]))
+                .fold(f64::INFINITY, f64::min);
+            sides_at[j].min(gap / 1.5)
+        })
+        .collect();
     for step in 1..=nc {
         let j = (s0 + step) % nc; // the corner at the end of the side before
         push(&mut inner, &mut place, Place::Corner(j), ring[j]);
@@ -408,8 +426,8 @@ fn fill_polygon(
             for r in (1..rays).rev() {
                 let theta = alpha[j] * r as f64 / rays as f64;
                 let tt = base + theta.to_radians();
-                for radius in [0.5, 0.75, 1.0, 1.25, 1.5] {
-                    let d = radius * sides_at[j];
+                for radius in [0.35, 0.5, 0.65, 0.75, 0.9, 1.0, 1.25, 1.5] {
+                    let d = radius * fan_unit[j];
                     push(
                         &mut inner,
                         &mut place,
@@ -576,13 +594,22 @@ fn fill_polygon(
             if std::env::var("RHOMB_DEBUG").is_ok() {
                 eprintln!("polygon {k} front {m} inner {n} start foot side {s0} t {t0}: {f:?}");
             }
-            if let Some(path) = std::env::var("RHOMB_DUMP")
+            // The failure RHOMB_DUMP_NTH (counted from 1), or else each overwrites the last.
+            static FAILURES: std::sync::atomic::AtomicUsize =
+                std::sync::atomic::AtomicUsize::new(0);
+            let nth = 1 + FAILURES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let wanted = std::env::var("RHOMB_DUMP_NTH")
                 .ok()
-                .filter(|p| !std::path::Path::new(p).exists())
-            {
+                .and_then(|x| x.parse::<usize>().ok())
+                .is_none_or(|x| x == nth);
+            if let Some(path) = std::env::var("RHOMB_DUMP").ok().filter(|_| wanted) {
                 // The kept triangles, the segments and the front near the failure, as JSON.
                 let c = fpos[i];
-                let r = 12.0 * cut.side[front[order[i]] as usize];
+                let sides: f64 = std::env::var("RHOMB_DUMP_SIDES")
+                    .ok()
+                    .and_then(|x| x.parse().ok())
+                    .unwrap_or(12.0);
+                let r = sides * cut.side[front[order[i]] as usize];
                 let near = |p: Point| (p[0] - c[0]).abs() < r && (p[1] - c[1]).abs() < r;
                 let tris: Vec<[Point; 3]> = cut
                     .kept
@@ -594,8 +621,9 @@ fn fill_polygon(
                     .filter(|&d| near(fpos[d]))
                     .map(|d| (d, fpos[d]))
                     .collect();
+                let chain: Vec<Point> = inner.iter().copied().filter(|&p| near(p)).collect();
                 let json = format!(
-                    "{{\"centre\": {c:?}, \"r\": {r}, \"at\": {i}, \"tris\": {tris:?}, \"segs\": {:?}, \"front\": {fr:?}}}",
+                    "{{\"centre\": {c:?}, \"r\": {r}, \"at\": {i}, \"tris\": {tris:?}, \"segs\": {:?}, \"front\": {fr:?}, \"inner\": {chain:?}}}",
                     segments.ends
                 );
                 let _ = std::fs::write(&path, json.replace('(', "[").replace(')', "]"));

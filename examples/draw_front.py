@@ -1,9 +1,9 @@
 """Draws the neighbourhood of a failed rhomb fill as a PNG (a debugging aid).
 
 The test `attempt_survey` of crates/hexmesh-core/src/rhomb/domain (run with
-RHOMB_DUMP=FILE) writes the first failed ladder's neighbourhood as JSON: the kept
-lattice triangles, the boundary segments and the front corners around the corner where
-the ladder failed. This script paints them with numpy only (no imaging library):
+RHOMB_DUMP=FILE) writes a failed ladder's neighbourhood as JSON (the latest, or the
+RHOMB_DUMP_NTH-th): the kept lattice triangles, the boundary segments, the ladder's
+candidate points and the front corners around the corner where the ladder failed. This script paints them with numpy only (no imaging library):
 kept triangles grey, segments blue, the candidate points of the inner chain green,
 front corners black, the failing one red and its
 three neighbours on each side orange.

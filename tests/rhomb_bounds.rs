@@ -1,6 +1,7 @@
-//! The promise of `rhomb` (paper 001, point sets): every angle in [30°, 90°] (1e-6° slack), a
+//! The promise of `rhomb` (paper 001) on point sets: every angle in [30°, 90°] (1e-6° slack), a
 //! valid mesh covering the bounding hexagon, every input point a vertex bit-exactly, the six
-//! hexagon corners vertices.
+//! hexagon corners vertices; on a triangle domain, the domain promise; and the domains paper
+//! 001 does not permit refused by name.
 
 use std::collections::BTreeMap;
 
@@ -174,21 +175,32 @@ fn a_point_at_a_centroid_is_centred_by_the_melted_patch() {
 }
 
 #[test]
-fn a_permitted_domain_is_read_and_refused_as_not_yet_meshed() {
+fn a_triangle_domain_is_meshed_within_the_domain_promise() {
     let input = Pslg {
         points: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
         segments: vec![[0, 1], [1, 2], [2, 0]],
         ..Pslg::default()
     };
-    let err = Rhomb.mesh(&input, &Params::default()).unwrap_err();
-    // The triangle got its extra corner: two 45° corners, a right angle and a flat one.
-    let text = err.to_string();
-    assert!(text.contains("does not mesh domains yet"), "{err}");
-    assert!(
-        text.contains("corners: 2 of at most 60°, 1 of 60°-150°, 1 above 150°"),
-        "{err}"
-    );
-    assert!(!Rhomb.supports_segments());
+    assert!(Rhomb.supports_segments());
+    let run = Rhomb
+        .mesh(&input, &Params::default())
+        .expect("a permitted domain");
+    assert!(run.complete);
+    // The verdict against rhomb's bounds: valid, conforming, every angle in [30°, 90°] (no
+    // corner is sharper than 30°: the two 45° corners are split too).
+    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
+    let verdict = quality::verdict(&run.mesh, Some(&input), Some(&bounds));
+    assert!(verdict.passed(), "{verdict}");
+    for (i, p) in input.points.iter().enumerate() {
+        assert_eq!(run.mesh.vertices[i], *p, "input point {i} is vertex {i}");
+    }
+    let area: f64 = (0..run.mesh.triangles.len())
+        .map(|t| {
+            let [a, b, c] = run.mesh.corners(t);
+            hexmesh::geom::orient2d(a, b, c) / 2.0
+        })
+        .sum();
+    assert!((area - 0.5).abs() < 1e-12, "{area}");
 }
 
 #[test]

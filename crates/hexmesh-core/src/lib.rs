@@ -124,7 +124,7 @@ pub enum Method {
     Hex,
     /// Its simple refinement (Sec. 4.3).
     HexSimple,
-    /// The rhomboidal quad-tree (Neugebauer & Diekmann); point sets only for now.
+    /// The rhomboidal quad-tree (Neugebauer & Diekmann): point sets and polygonal domains.
     Rhomb,
     /// Saalfeld's Delaunay edge refinement (conforming Delaunay).
     Saalfeld,

@@ -1,19 +1,27 @@
 //! `rhomb`: the rhomboidal quad-tree mesher of Neugebauer & Diekmann, "Improved Mesh Generation:
-//! Not Simple but Good" (paper 001), for point sets inside their bounding hexagon.
+//! Not Simple but Good" (paper 001), for point sets inside their bounding hexagon and for
+//! polygonal domains.
 //!
 //! Steps (paper Sec. 4): root rhomb (`lattice`), split crowded rhombs with 2:1 balance (`tree`,
 //! steps 1–3), centre every point in a patch of melted rhombs (`centring`, steps 4–5, Sec. 5.4),
 //! triangulate rhombs by the fixed patterns and the patches (`patterns`, steps 10 and 12).
-//! Promise: every angle in [30°, 90°]; the mesh covers the bounding hexagon; every input point is
-//! a vertex bit-exactly (vertex i is input point i); the six hexagon corners are vertices.
-//! Inputs with segments (paper Sec. 5.1–5.8: moving conditions, border-boxes, polygon corners)
-//! are refused, as are points closer than 2^-48 of the hexagon (the lattice depth) and inputs
-//! whose triangles f64 output would move beyond the bounds by more than `--max-rounding` (see
-//! `rounding_check`). A point that is a lattice vertex of the hexagon's edge bit for bit (on
-//! the edge in real arithmetic, rounding left it just inside) is meshed as that vertex
-//! (`Frame::boundary_vertex`). Budgets: a step is one rhomb split; the vertex budget counts rhombs (about
-//! one output vertex each). A run stopped by a budget returns the balanced tree's triangulation
-//! without the input points (`complete == false`), which still meets the angle bounds.
+//! Promise on point sets: every angle in [30°, 90°]; the mesh covers the bounding hexagon;
+//! every input point is a vertex bit-exactly (vertex i is input point i); the six hexagon
+//! corners are vertices. Refused: points closer than 2^-48 of the hexagon (the lattice depth)
+//! and inputs whose triangles f64 output would move beyond the bounds by more than
+//! `--max-rounding` (see `rounding_check`). A point that is a lattice vertex of the hexagon's
+//! edge bit for bit (on the edge in real arithmetic, rounding left it just inside) is meshed
+//! as that vertex (`Frame::boundary_vertex`). Budgets: a step is one rhomb split; the vertex
+//! budget counts rhombs (about one output vertex each). A run stopped by a budget returns the
+//! balanced tree's triangulation without the input points (`complete == false`), which still
+//! meets the angle bounds.
+//!
+//! Inputs with segments are polygonal domains (`domain`, Sec. 3–5): one or more outer
+//! polygons, polygonal holes and single interior points; every angle in [30°, 90°] but at an
+//! input corner sharper than 30°, which is kept whole. What the paper does not permit (a
+//! segment inside the domain, a dangling one, crossing ones) is refused by name. A budget
+//! stops a domain with its reason and no mesh.
+//!
 //! Size (ours): `Params::max_area` (with the regions' smallest area limit) and
 //! `Params::max_edge` are kept on point sets by splitting every rhomb coarser than the level
 //! whose triangles respect both (`size_level`) and every patch whose triangles could exceed
@@ -37,7 +45,7 @@ use crate::quality::Bounds;
 use lattice::Frame;
 use tree::{Guard, Stop, Tree};
 
-/// The rhomboidal quad-tree mesher (paper 001), point sets only.
+/// The rhomboidal quad-tree mesher (paper 001): point sets and polygonal domains.
 #[derive(Debug, Clone, Copy, Default)]
 pub struct Rhomb;
 
@@ -49,7 +57,7 @@ impl Mesher for Rhomb {
     }
 
     fn version(&self) -> String {
-        format!("hexmesh {} (point sets)", env!("CARGO_PKG_VERSION"))
+        format!("hexmesh {}", env!("CARGO_PKG_VERSION"))
     }
 
     fn settings(&self, params: &Params) -> String {
@@ -67,7 +75,7 @@ impl Mesher for Rhomb {
     }
 
     fn supports_segments(&self) -> bool {
-        false
+        true
     }
 
     fn promise(&self, params: &Params) -> Bounds {

@@ -195,11 +195,6 @@ impl Tree {
         cells
     }
 
-    /// The window list of leaf `c` (empty for a cell that is not a leaf).
-    pub fn window(&self, c: Cell) -> &[u32] {
-        self.leaves.get(&c).map_or(&[], Vec::as_slice)
-    }
-
     pub fn leaf_count(&self) -> usize {
         self.leaves.len()
     }

@@ -37,6 +37,7 @@ const BETWEEN: usize = 9;
 /// at most besides its foot): wide enough to melt the
 /// triangles of two neighbouring boxes (leaving out the foot between them), narrow enough
 /// that a long strip stays linear in its length.
+#[cfg(test)]
 const SPAN: usize = 2 * (BETWEEN + 7);
 
 /// A vertex of the strip's triangulation.
@@ -50,6 +51,7 @@ pub enum Vertex {
 
 /// The triangulation of a strip: the points it puts on S (in order from the first front
 /// corner's foot to the last one's, both included) and its triangles, counter-clockwise.
+#[cfg(test)]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Strip {
     pub on_segment: Vec<Point>,
@@ -62,11 +64,23 @@ pub struct Strip {
 #[derive(Debug, Clone, PartialEq)]
 pub enum Failure {
     /// Front corner `0` is not strictly on the domain's side of S, or its foot does not lie
-    /// strictly after the previous corner's foot between S's ends.
+    /// strictly after the previous corner's foot between S's ends (`strip`, tests only).
+    #[cfg(test)]
     Front(usize),
     /// No ladder keeps the bounds: the best one's worst triangle (its margin) touches front
     /// corner `at`, or no ladder gets past front corner `at` at all.
     Bounds { at: usize, margin: f64 },
+}
+
+impl Failure {
+    /// The front corner the failure names.
+    pub fn at(&self) -> usize {
+        match *self {
+            #[cfg(test)]
+            Failure::Front(i) => i,
+            Failure::Bounds { at, .. } => at,
+        }
+    }
 }
 
 /// The score of triangle abc: its smallest angle's margin above 30°, or, when an angle
@@ -168,6 +182,7 @@ pub fn box_points(p: Point, q: Point, a: Point, b: Point) -> Vec<Point> {
 /// Triangulates the strip between `front` (the moved corners, ordered from S's end `a`
 /// towards `b`, all on S's left: the domain's side) and the segment ab, keeping every angle
 /// in [30°, 90°] (within `SLACK`).
+#[cfg(test)]
 pub fn strip(front: &[Point], a: Point, b: Point) -> Result<Strip, Failure> {
     let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
     let len2 = ux * ux + uy * uy;
@@ -376,7 +391,7 @@ pub fn ladder(
         }
     }
     if value < -SLACK {
-        if std::env::var("RHOMB_DEBUG").is_ok() {
+        if cfg!(test) && std::env::var("RHOMB_DEBUG").is_ok() {
             // The path's triangles at its worst margin.
             let at = |v: Vertex| match v {
                 Vertex::Front(i) => front[i],

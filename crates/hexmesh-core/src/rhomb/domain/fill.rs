@@ -14,7 +14,7 @@
 
 use std::collections::HashMap;
 
-use super::boxes::{box_points, ladder, score, Failure, Vertex};
+use super::boxes::{box_points, ladder, score, Vertex};
 use super::cut::{Cut, Segments};
 use super::input::Domain;
 use crate::geom::{angle_deg, dist, orient2d, Point};
@@ -38,6 +38,16 @@ pub struct Fill {
     pub triangles: Vec<[Id; 3]>,
     pub whole: Vec<usize>,
 }
+
+/// What a fill keeps from one erosion round to the next: the wedge tables of the sharp
+/// corners by their points (an erosion far from a corner leaves them as they were).
+#[derive(Debug, Default)]
+pub struct Memo {
+    wedges: HashMap<Vec<u64>, std::rc::Rc<WedgeTable>>,
+}
+
+/// A wedge's table (`wedge`): the best cut of (c, ws[a], vs[b]) for every a, b.
+pub type WedgeTable = Vec<Vec<(f64, WedgeStep)>>;
 
 /// Why a fill failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -100,7 +110,7 @@ pub enum WedgeStep {
 /// W or V and its third corner on the other, for every a, b (`ws`, `vs` by distance from
 /// c): the smallest angle's margin over 30° (the angle at c exempt when the corner, `alpha`
 /// degrees, is sharper than 30°), or −∞ when there is none.
-pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point]) -> Vec<Vec<(f64, WedgeStep)>> {
+pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point]) -> WedgeTable {
     const SPAN: usize = 24;
     let (na, nb) = (ws.len(), vs.len());
     let mut best = vec![vec![(f64::NEG_INFINITY, WedgeStep::Tip); nb]; na];
@@ -171,7 +181,7 @@ pub fn wedge_triangles(
 
 /// A corner's wedge: its W and V points (indices into the inner chain, by distance from the
 /// corner) and its table (`wedge`).
-type Wedge = (Vec<usize>, Vec<usize>, Vec<Vec<(f64, WedgeStep)>>);
+type Wedge = (Vec<usize>, Vec<usize>, std::rc::Rc<WedgeTable>);
 
 /// How many points back a side along a polygon side may reach (about three boxes).
 const SIDE_SPAN: usize = 48;
@@ -206,6 +216,7 @@ pub fn fill(
     segments: &Segments,
     cut: &Cut,
     corner_side: &[Vec<f64>],
+    memo: &mut Memo,
 ) -> Result<Fill, Stuck> {
     // Each front goes with the polygon its corners are nearest to (by majority).
     let mut front_of: Vec<Vec<usize>> = vec![Vec::new(); domain.polygons.len()];
@@ -254,15 +265,12 @@ pub fn fill(
                     .collect(),
             ));
         }
-        fill_polygon(
-            domain,
-            segments,
-            cut,
+        let target = Target {
             k,
-            &cut.loops[fronts[0]],
-            &corner_side[k],
-            &mut out,
-        )?;
+            front: &cut.loops[fronts[0]],
+            sides_at: &corner_side[k],
+        };
+        fill_polygon(domain, segments, cut, &target, memo, &mut out)?;
     }
     Ok(out)
 }
@@ -295,16 +303,23 @@ fn nearest_side(
     best
 }
 
-/// The cyclic ladder between polygon `k` and its front `front`.
+/// One polygon's fill: polygon `k`, its front and the lattice side at each of its corners.
+struct Target<'t> {
+    k: usize,
+    front: &'t [u32],
+    sides_at: &'t [f64],
+}
+
+/// The cyclic ladder between polygon `target.k` and its front.
 fn fill_polygon(
     domain: &Domain,
     segments: &Segments,
     cut: &Cut,
-    k: usize,
-    front: &[u32],
-    sides_at: &[f64],
+    target: &Target,
+    memo: &mut Memo,
     out: &mut Fill,
 ) -> Result<(), Stuck> {
+    let (k, front, sides_at) = (target.k, target.front, target.sides_at);
     let poly = &domain.polygons[k];
     let nc = poly.corners.len();
     let ring: Vec<Point> = poly
@@ -404,18 +419,17 @@ fn fill_polygon(
     for &t in stops[s0].iter().filter(|&&t| t > t0) {
         push(&mut inner, &mut place, Place::Side(s0, t), at(s0, t));
     }
-    // The fan's radii are in units of the corner's lattice side, or less where the front
-    // comes closer (a finer lattice beside the corner than at it): the outer ray points stay
-    // inside the gap.
-    let fan_unit: Vec<f64> = (0..nc)
+    // Each corner's distance to the nearest front corner: the fan's radii span it (the
+    // outer ray points stay inside the gap, whether the lattice beside the corner is finer
+    // than at it or coarser), and a sharp corner's wedge reaches past it.
+    let gap: Vec<f64> = (0..nc)
         .map(|j| {
-            let gap = fpos
-                .iter()
+            fpos.iter()
                 .map(|&p| dist(p, ring[j]))
-                .fold(f64::INFINITY, f64::min);
-            sides_at[j].min(gap / 1.5)
+                .fold(f64::INFINITY, f64::min)
         })
         .collect();
+    let fan_unit: Vec<f64> = gap.iter().map(|g| g / 1.5).collect();
     for step in 1..=nc {
         let j = (s0 + step) % nc; // the corner at the end of the side before
         push(&mut inner, &mut place, Place::Corner(j), ring[j]);
@@ -454,7 +468,11 @@ fn fill_polygon(
             continue;
         }
         let w_side = (j + nc - 1) % nc;
-        let reach = length[w_side].min(length[j]) / 2.0;
+        // Past the front's nearest corner and out to where the corner is four lattice
+        // sides wide (the front meets the wedge before that), and at most half of either
+        // side.
+        let wide = (3.0 * gap[j]).max(4.0 * sides_at[j] / (alpha[j].to_radians() / 2.0).sin());
+        let reach = (length[w_side].min(length[j]) / 2.0).min(wide);
         let mut ws: Vec<(f64, usize)> = Vec::new();
         let mut vs: Vec<(f64, usize)> = Vec::new();
         for (idx, p) in place.iter().enumerate() {
@@ -470,7 +488,16 @@ fn fill_polygon(
         vs.sort_by(|a, b| a.0.total_cmp(&b.0));
         let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
         let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();
-        let table = wedge(ring[j], alpha[j], &wp, &vp);
+        let key: Vec<u64> = [ring[j][0], ring[j][1], alpha[j], wp.len() as f64]
+            .into_iter()
+            .chain(wp.iter().chain(&vp).flat_map(|p| [p[0], p[1]]))
+            .map(f64::to_bits)
+            .collect();
+        let table = memo
+            .wedges
+            .entry(key)
+            .or_insert_with(|| std::rc::Rc::new(wedge(ring[j], alpha[j], &wp, &vp)))
+            .clone();
         for (a, x) in ws.iter().enumerate() {
             w_pos[x.1] = Some(a);
         }
@@ -586,11 +613,10 @@ fn fill_polygon(
         }
     }
     let result = ladder(&fpos, &inner, &window, (n, &back), &link);
-    if std::env::var("RHOMB_DEBUG").is_ok() || std::env::var("RHOMB_DUMP").is_ok() {
+    // Debugging aids of the tests' survey (`attempt_survey`), never read by a build for use.
+    if cfg!(test) && (std::env::var("RHOMB_DEBUG").is_ok() || std::env::var("RHOMB_DUMP").is_ok()) {
         if let Err(f) = &result {
-            let i = match f {
-                Failure::Front(i) | Failure::Bounds { at: i, .. } => (*i).min(m - 1),
-            };
+            let i = f.at().min(m - 1);
             if std::env::var("RHOMB_DEBUG").is_ok() {
                 eprintln!("polygon {k} front {m} inner {n} start foot side {s0} t {t0}: {f:?}");
             }
@@ -639,9 +665,7 @@ fn fill_polygon(
             }
         }
     }
-    let (_, triangles) = result.map_err(|f| match f {
-        Failure::Front(i) | Failure::Bounds { at: i, .. } => Stuck::At(front[order[i.min(m - 1)]]),
-    })?;
+    let (_, triangles) = result.map_err(|f| Stuck::At(front[order[f.at().min(m - 1)]]))?;
     // Output ids: lattice corners, input corners, and new points (the start foot once).
     let mut ids: Vec<Option<Id>> = vec![None; n];
     let mut id_of = |x: usize, out: &mut Fill| -> Id {

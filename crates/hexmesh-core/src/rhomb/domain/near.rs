@@ -14,14 +14,17 @@
 //! Corners at rhombs of different sizes and splitting points are made movable by `moving`
 //! (Sec. 5.1); their Sec. 5.2 case 2 moves are not implemented yet.
 
+#[cfg(test)]
 use super::exact::Exact;
 use crate::geom::{orient2d, Point};
 
 /// The six hexagon directions around a lattice vertex, counter-clockwise from e1: a_i is
 /// p + DIRECTIONS[i] in lattice steps, a_{i+3} the opposite one.
+#[cfg(test)]
 pub const DIRECTIONS: [(i64, i64); 6] = [(1, 0), (0, 1), (-1, 1), (-1, 0), (0, -1), (1, -1)];
 
 /// Where the boundary crosses the hexagon of a corner first.
+#[cfg(test)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Nearest {
     /// j: the hexagon side (p, a_j) with the crossing nearest p.
@@ -31,6 +34,7 @@ pub struct Nearest {
 }
 
 /// The exact orientation of c against the line ab, scaled by 2^k per coordinate difference.
+#[cfg(test)]
 fn orient(a: Point, b: Point, c: Point, k: i32) -> Exact {
     let d = |u: f64, v: f64| Exact::diff(u, v).scaled(k);
     let (bx, by) = (d(b[0], a[0]), d(b[1], a[1]));
@@ -53,11 +57,13 @@ pub fn meets(p: Point, q: Point, a: Point, b: Point) -> bool {
 }
 
 /// A crossing of side (p, a) at t = num / den of the way from p (both exact, den > 0).
+#[cfg(test)]
 struct Crossing {
     num: Exact,
     den: Exact,
 }
 
+#[cfg(test)]
 impl Crossing {
     /// The crossing of (p, a) by boundary side bc, if they meet; `k` scales the differences.
     fn of(p: Point, a: Point, b: Point, c: Point, k: i32) -> Option<Crossing> {
@@ -98,6 +104,7 @@ impl Crossing {
 /// The nearest crossing of the hexagon sides (p, a_i) by the boundary sides `boundary`, if
 /// any: the first side in counter-clockwise order among equally near ones. `scale` is the
 /// exponent of the hexagon's side length (for the exact arithmetic's range).
+#[cfg(test)]
 pub fn nearest(
     p: Point,
     hexagon: &[Point; 6],
@@ -123,6 +130,7 @@ pub fn nearest(
 /// Sec. 5.2 case 1: where level-`level` corner (i, j) of four equal rhombs goes, as a vertex
 /// of level `level + 1`: itself, or the midpoint of (p, a_{j+3}) when the nearest crossing is
 /// within half a side.
+#[cfg(test)]
 pub fn moved(level: u8, i: i64, j: i64, near: Nearest) -> (u8, i64, i64) {
     let (di, dj) = if near.within_half {
         DIRECTIONS[(near.side + 3) % 6]

@@ -320,9 +320,9 @@ pub fn ladder(
                 cell.is_some_and(|(best, count, _)| mm < best || (mm == best && c + 1 >= count))
             };
             if i > 0 {
-                if let Some((mm, c, _)) = get(&best, i - 1, k) {
-                    if hopeless(&cell, mm, c) {
-                    } else if let Some(g) = score(inner[k], front[i], front[i - 1]) {
+                let from = get(&best, i - 1, k).filter(|&(mm, c, _)| !hopeless(&cell, mm, c));
+                if let Some((mm, c, _)) = from {
+                    if let Some(g) = score(inner[k], front[i], front[i - 1]) {
                         take(&mut cell, (mm.min(g), c + 1, Step::Front(k)));
                     }
                 }

@@ -71,3 +71,28 @@ fn every_permitted_example_and_imr_are_meshed_within_the_domain_promise() {
         }
     }
 }
+
+#[test]
+fn a_domain_in_projected_map_coordinates_is_meshed_within_the_domain_promise() {
+    // pslg-holes moved to x ≈ 5e5, y ≈ 5e6 (UTM-like): the move is exact, the mesh is made
+    // near the origin and moved back, and its angles are held to the bounds within the
+    // rounding allowance of such coordinates.
+    let mut input = by_name("pslg-holes").unwrap();
+    let far = |p: [f64; 2]| [p[0] + 512_000.0, p[1] + 5_040_000.0];
+    input.points = input.points.iter().map(|&p| far(p)).collect();
+    input.holes = input.holes.iter().map(|&p| far(p)).collect();
+    let run = Rhomb
+        .mesh(&input, &Params::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
+    let verdict = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
+    assert!(verdict.passed(), "{verdict}");
+    for (i, p) in input.points.iter().enumerate() {
+        assert_eq!(run.mesh.vertices[i], *p, "input point {i}");
+    }
+    // The same lattice as at the origin: as many triangles.
+    let near = Rhomb
+        .mesh(&by_name("pslg-holes").unwrap(), &Params::default())
+        .unwrap();
+    assert_eq!(run.mesh.triangles.len(), near.mesh.triangles.len());
+}

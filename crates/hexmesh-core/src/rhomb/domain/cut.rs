@@ -135,14 +135,14 @@ pub struct Cut<'a> {
     pub loops: Vec<Vec<u32>>,
 }
 
-/// What does not change while `fill` erodes: the adjacency, the triangles inside the domain
-/// and untouched by it, the moves, and the corners deleted whatever is eroded.
+/// What does not change while `fill` erodes: the adjacency, the moves, and the triangles
+/// kept before any erosion (inside the domain and untouched by it, no corner deleted, in
+/// bounds after the moves).
 pub struct Prepared {
     edge: HashMap<(u32, u32), usize>,
     position: Vec<Point>,
     side: Vec<f64>,
-    inside: Vec<bool>,
-    gone: Vec<bool>,
+    kept: Vec<bool>,
 }
 
 /// Prepares the cut of `mesh` (the quad-tree's triangulation, `fixed` vertices never moved:
@@ -242,7 +242,7 @@ pub fn prepare(
             }
         }
     }
-    let keep: Vec<bool> = (0..nt)
+    let mut keep: Vec<bool> = (0..nt)
         .map(|k| !touched[k] && inside_region[region[k]])
         .collect();
     // Moves: a kept corner next to a deleted triangle, its nearest crossing within half an
@@ -309,27 +309,32 @@ pub fn prepare(
     let gone: Vec<bool> = (0..nv)
         .map(|v| stuck[v] || (near_boundary[v] && !fixed[v] && near_corner(v)))
         .collect();
-    Prepared {
-        edge,
-        position,
-        side,
-        inside: keep,
-        gone,
-    }
-}
-
-/// Cuts the prepared lattice: deletes the triangles at `eroded` corners and those a move
-/// left outside the bounds, then the pinches, and traces the fronts.
-pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
-    let (nv, nt) = (mesh.vertices.len(), mesh.triangles.len());
-    let (edge, position, side) = (&prep.edge, &prep.position[..], &prep.side[..]);
-    let mut keep = prep.inside.clone();
-    let gone: Vec<bool> = (0..nv).map(|v| prep.gone[v] || eroded[v]).collect();
+    // Deleted besides: triangles at those corners and triangles a move left outside the
+    // bounds.
     for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
         let p = t.map(|v| position[v as usize]);
         let bounded =
             super::boxes::score(p[0], p[1], p[2]).is_some_and(|g| g >= -super::boxes::SLACK);
         if t.iter().any(|&v| gone[v as usize]) || !bounded {
+            *kept = false;
+        }
+    }
+    Prepared {
+        edge,
+        position,
+        side,
+        kept: keep,
+    }
+}
+
+/// Cuts the prepared lattice: deletes the triangles at `eroded` corners, then the pinches,
+/// and traces the fronts.
+pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
+    let (nv, nt) = (mesh.vertices.len(), mesh.triangles.len());
+    let (edge, position, side) = (&prep.edge, &prep.position[..], &prep.side[..]);
+    let mut keep = prep.kept.clone();
+    for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
+        if t.iter().any(|&v| eroded[v as usize]) {
             *kept = false;
         }
     }

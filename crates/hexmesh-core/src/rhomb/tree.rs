@@ -195,6 +195,17 @@ impl Tree {
         cells
     }
 
+    /// Whether `c` is a leaf now.
+    pub fn is_leaf(&self, c: Cell) -> bool {
+        self.leaves.contains_key(&c)
+    }
+
+    /// The leaves created since the last call (or the last crowdedness pass), some of which
+    /// may have been split since.
+    pub fn take_fresh(&mut self) -> Vec<Cell> {
+        std::mem::take(&mut self.fresh)
+    }
+
     pub fn leaf_count(&self) -> usize {
         self.leaves.len()
     }

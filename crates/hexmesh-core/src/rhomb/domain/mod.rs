@@ -225,46 +225,60 @@ fn build(
 /// segment touches has first neighbours of its own size, the coarser ones split until none
 /// is left. The rhombs along a polygon then change size only away from it, at the price of
 /// the finest size spreading along the boundary.
+///
+/// A work list of the touched leaves: a leaf is looked at again only after a split beside
+/// it, and a split's new leaves only if they are touched, so the cost follows the splits
+/// (a whole-tree pass per round was quadratic where the finest size spreads along a long
+/// boundary: minutes on a short segment beside long ones). Splits only make neighbours
+/// finer, so the least tree with the property is reached whatever the order.
 fn even_band(
     tree: &mut Tree,
     frame: &Frame,
     segments: &cut::Segments,
     guard: &Guard,
 ) -> Result<(), Stop> {
+    use super::lattice::Cell;
     use super::lattice::{key, AROUND};
     use super::tree::Cover;
-    loop {
-        guard.check(tree)?;
-        let mut coarser = std::collections::BTreeSet::new();
-        for c in tree.leaves() {
-            let corner = |di: i64, dj: i64| frame.point(key(c.level, c.i + di, c.j + dj));
-            let halves = [
-                [corner(0, 0), corner(1, 0), corner(0, 1)],
-                [corner(1, 0), corner(1, 1), corner(0, 1)],
-            ];
-            let b = cut::bbox(&[corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)]);
-            let touched = segments.near(b).into_iter().any(|s| {
-                let [p, q] = segments.ends[s as usize];
-                halves.iter().any(|&h| cut::touches(h, p, q))
+    let touched = |c: Cell| {
+        let corner = |di: i64, dj: i64| frame.point(key(c.level, c.i + di, c.j + dj));
+        let halves = [
+            [corner(0, 0), corner(1, 0), corner(0, 1)],
+            [corner(1, 0), corner(1, 1), corner(0, 1)],
+        ];
+        let b = cut::bbox(&[corner(0, 0), corner(1, 0), corner(0, 1), corner(1, 1)]);
+        segments.near(b).into_iter().any(|s| {
+            let [p, q] = segments.ends[s as usize];
+            halves.iter().any(|&h| cut::touches(h, p, q))
+        })
+    };
+    tree.take_fresh();
+    let mut queue: Vec<Cell> = tree.leaves().into_iter().filter(|&c| touched(c)).collect();
+    queue.reverse();
+    let mut looked = 0u64;
+    while let Some(c) = queue.pop() {
+        looked += 1;
+        if looked % 4096 == 0 {
+            guard.check(tree)?;
+        }
+        if !tree.is_leaf(c) {
+            continue;
+        }
+        let coarser = AROUND
+            .iter()
+            .find_map(|&(di, dj)| match tree.cover(c.offset(di, dj)) {
+                Cover::Leaf(l) if l.level < c.level => Some(l),
+                _ => None,
             });
-            if !touched {
-                continue;
-            }
-            for &(di, dj) in &AROUND {
-                if let Cover::Leaf(l) = tree.cover(c.offset(di, dj)) {
-                    if l.level < c.level {
-                        coarser.insert(l);
-                    }
-                }
-            }
-        }
-        if coarser.is_empty() {
-            return Ok(());
-        }
-        for l in coarser {
-            tree.split(l)?;
-        }
+        let Some(l) = coarser else { continue };
+        tree.split(l)?;
+        queue.push(c);
+        let mut fresh = tree.take_fresh();
+        fresh.sort_unstable();
+        fresh.reverse();
+        queue.extend(fresh.into_iter().filter(|&f| tree.is_leaf(f) && touched(f)));
     }
+    guard.check(tree)
 }
 
 /// The side of the leaf holding domain point `c`.

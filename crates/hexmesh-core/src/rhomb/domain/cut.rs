@@ -145,6 +145,28 @@ pub struct Prepared {
     kept: Vec<bool>,
 }
 
+impl Prepared {
+    /// Lattice vertex `v` where the cut has it (moved or not).
+    pub fn position(&self, v: u32) -> Point {
+        self.position[v as usize]
+    }
+
+    /// Lattice vertex `v`'s local side.
+    pub fn side(&self, v: u32) -> f64 {
+        self.side[v as usize]
+    }
+
+    /// Whether triangle `t` of the lattice is kept before any erosion.
+    pub fn is_kept(&self, t: usize) -> bool {
+        self.kept[t]
+    }
+
+    /// Moves lattice vertex `v` to `p` (`relax`, which keeps its triangles in bounds).
+    pub fn relocate(&mut self, v: u32, p: Point) {
+        self.position[v as usize] = p;
+    }
+}
+
 /// Prepares the cut of `mesh` (the quad-tree's triangulation, `fixed` vertices never moved:
 /// the single points) by the domain's boundary.
 pub fn prepare(

@@ -14,9 +14,10 @@
 
 use std::collections::HashMap;
 
-use super::boxes::{box_points, ladder, score, Vertex};
+use super::boxes::{box_points, score, Vertex};
 use super::cut::{Cut, Segments};
 use super::input::Domain;
+use super::pieces::{solve, Chain, Pieces};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 
 /// A vertex of the filled mesh.
@@ -44,6 +45,7 @@ pub struct Fill {
 #[derive(Debug, Default)]
 pub struct Memo {
     wedges: HashMap<Vec<u64>, std::rc::Rc<WedgeTable>>,
+    pieces: Pieces,
 }
 
 /// A wedge's table (`wedge`): the best cut of (c, ws[a], vs[b]) for every a, b.
@@ -52,8 +54,10 @@ pub type WedgeTable = Vec<Vec<(f64, WedgeStep)>>;
 /// Why a fill failed.
 #[derive(Debug, Clone, PartialEq)]
 pub enum Stuck {
-    /// The ladder around a polygon fails at this lattice vertex (the caller erodes it).
-    At(u32),
+    /// The ladder around a polygon fails at this lattice vertex, by this margin (degrees
+    /// below the bounds when negative; −∞ where no ladder was tried): the caller moves or
+    /// erodes it.
+    At(u32, f64),
     /// The fronts do not pair with the polygons one to one: the kept lattice does not
     /// separate two polygons (one front faces both), or a polygon faces none. The tree must
     /// be finer at these points.
@@ -186,6 +190,9 @@ type Wedge = (Vec<usize>, Vec<usize>, std::rc::Rc<WedgeTable>);
 /// How many points back a side along a polygon side may reach (about three boxes).
 const SIDE_SPAN: usize = 48;
 
+/// How long a piece of the ladder is, in lattice sides along its side (`pieces`).
+const PIECE: f64 = 24.0;
+
 /// How far back a side may reach across a corner sharper than 90° (its wedge).
 const SHARP_SPAN: usize = 400;
 
@@ -254,7 +261,7 @@ pub fn fill(
                 .iter()
                 .min_by_key(|&&f| (cut.loops[f].len(), f))
                 .expect("two");
-            return Err(Stuck::At(cut.loops[*smallest][0]));
+            return Err(Stuck::At(cut.loops[*smallest][0], f64::NEG_INFINITY));
         }
         if fronts.is_empty() {
             let poly = &domain.polygons[k];
@@ -361,7 +368,7 @@ fn fill_polygon(
         .filter_map(|i| clearance(i).map(|c| (c, i)))
         .max_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)))
         .map(|x| x.1)
-        .ok_or(Stuck::At(front[0]))?;
+        .ok_or(Stuck::At(front[0], f64::NEG_INFINITY))?;
     let (s0, t0) = feet[start].expect("a foot");
     let m = front.len() + 1;
     let order: Vec<usize> = (0..m).map(|i| (start + i) % front.len()).collect();
@@ -612,7 +619,49 @@ fn fill_polygon(
             k += 1;
         }
     }
-    let result = ladder(&fpos, &inner, &window, (n, &back), &link);
+    // Anchor rungs: a front corner with its own foot, clear of the side's corner tips, the
+    // first in each stretch of PIECE of its sides along its side (so an erosion moves only
+    // the anchors near it).
+    let mut anchors: Vec<(usize, usize)> = vec![(0, 0)];
+    let mut bucket: Option<(usize, i64)> = None;
+    for (i, &f) in order.iter().enumerate().take(m - 1).skip(1) {
+        let (Some((s, t)), Some(_)) = (feet[f], clearance(f)) else {
+            continue;
+        };
+        let Some(&x) = index_of_point.get(&(s, t.to_bits())) else {
+            continue;
+        };
+        let b = (
+            s,
+            (t / (PIECE * cut.side[front[f] as usize])).floor() as i64,
+        );
+        let last = *anchors.last().expect("the start");
+        if bucket != Some(b) && x > last.1 && x < n - 1 && (window[i].0..=window[i].1).contains(&x)
+        {
+            anchors.push((i, x));
+            bucket = Some(b);
+        }
+    }
+    anchors.push((m - 1, n - 1));
+    // What each inner point is, for the pieces' keys; none for a wedge's points, whose
+    // links read a table of points beyond any piece.
+    let tags: Vec<Option<[u64; 2]>> = (0..n)
+        .map(|x| match place[x] {
+            _ if w_pos[x].is_some() || v_pos[x].is_some() => None,
+            Place::Side(s, t) => Some([s as u64, t.to_bits()]),
+            Place::Corner(j) => Some([1 << 40 | j as u64, 0]),
+            Place::Ray(j, a) => Some([2 << 40 | j as u64, a.to_bits()]),
+        })
+        .collect();
+    let chain = Chain {
+        front: &fpos,
+        inner: &inner,
+        window: &window,
+        back: &back,
+        tags: &tags,
+        salt: k as u64,
+    };
+    let result = solve(&chain, &anchors, &link, &mut memo.pieces);
     // Debugging aids of the tests' survey (`attempt_survey`), never read by a build for use.
     if cfg!(test) && (std::env::var("RHOMB_DEBUG").is_ok() || std::env::var("RHOMB_DUMP").is_ok()) {
         if let Err(f) = &result {
@@ -665,7 +714,14 @@ fn fill_polygon(
             }
         }
     }
-    let (_, triangles) = result.map_err(|f| Stuck::At(front[order[f.at().min(m - 1)]]))?;
+    let (_, triangles) = result.map_err(|f| {
+        let margin = match f {
+            super::boxes::Failure::Bounds { margin, .. } => margin,
+            #[allow(unreachable_patterns)]
+            _ => f64::NEG_INFINITY,
+        };
+        Stuck::At(front[order[f.at().min(m - 1)]], margin)
+    })?;
     // Output ids: lattice corners, input corners, and new points (the start foot once).
     let mut ids: Vec<Option<Id>> = vec![None; n];
     let mut id_of = |x: usize, out: &mut Fill| -> Id {

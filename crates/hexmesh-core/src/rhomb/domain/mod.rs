@@ -16,6 +16,11 @@
 //! - `fill` (steps 11, 13–16, ours in detail): one cyclic ladder between each polygon and
 //!   its front, with each input corner's tip (a fan of rays at c, or below 90° a wedge
 //!   between its two sides) in the same chain;
+//! - `pieces` (ours): that ladder cut at rungs from front corners to their feet and solved
+//!   piece by piece, each piece kept by its content, so an erosion costs the pieces it
+//!   changes;
+//! - `relax` (ours): where the ladder misses the bounds by less than 5°, the front corner
+//!   named is moved a little (its lattice triangles kept in bounds) before it is eroded;
 //! - `angles` and `fan` (tests only): every angle of a domain mesh against the bounds, and
 //!   the corner tips tried on corners of 10°–350° in a unit lattice.
 //!
@@ -24,10 +29,9 @@
 //! report's domains (imr, pslg-holes, -nested, -short-long, -wedge-5; pslg-slit's dangling
 //! segment is refused) and the tests' squares, hexagons, triangles, stars with star holes.
 //! Not yet every permitted domain: on the first 40 cases of `fuzz --domains` (seed
-//! 20261123), 15 meshed and 25 stopped, either at the 20 s budget or where 300 erosions
-//! left no ladder in bounds; every large-coordinates and short-long case failed (since
-//! then a domain far from the origin is meshed shifted near it, and one large-coordinates
-//! case of the five passes). A failure is an error, never a mesh outside the promise.
+//! 20261123), 25 mesh and 15 stop, either at the 20 s budget or where 300 erosions left no
+//! ladder in bounds (4 of the 5 short-long cases). A failure is an error, never a mesh
+//! outside the promise.
 //!
 //! Departures: several outer polygons in one tree (`input`); the path condition of
 //! crowdedness not tested (`crowded`); both split at least as much as the paper. In place
@@ -35,7 +39,8 @@
 //! neighbours of its own size, so the fronts the ladder joins are of one size locally. In
 //! place of the border-box cases and Sec. 5.6–5.8, whose figures our copy of the paper
 //! lacks, the ladder and the corner tips of `fill`; where no ladder keeps the bounds, the
-//! lattice corner named by the best one's worst triangle is eroded and the cut made again.
+//! lattice corner named by the best one's worst triangle is moved (a near miss, `relax`) or
+//! eroded, and the cut made again.
 
 #[cfg(test)]
 mod angles;
@@ -50,6 +55,8 @@ mod fan;
 mod fill;
 mod input;
 mod near;
+mod pieces;
+mod relax;
 
 use crate::error::{Error, Result};
 use crate::geom::Hexagon;
@@ -181,7 +188,8 @@ fn build(
             })
             .collect();
         let mut eroded = vec![false; lattice.vertices.len()];
-        let prepared = cut::prepare(&lattice, &domain, &segments, &fixed, CLEAR);
+        let mut prepared = cut::prepare(&lattice, &domain, &segments, &fixed, CLEAR);
+        let mut moved = std::collections::BTreeSet::new();
         loop {
             guard.check(&tree).map_err(stopped)?;
             let cut = cut::cut(&lattice, &prepared, &eroded);
@@ -192,11 +200,34 @@ fn build(
                         f.whole.iter().map(|&t| cut.kept.len() + t).collect();
                     break 'refine (assemble(&domain, &fixed, &cut, &f), whole);
                 }
-                Err(fill::Stuck::At(v)) if rounds < MAX_EROSIONS && !eroded[v as usize] => {
+                // A near miss: the corner is tried in places around it first (`relax`), and
+                // left at the one whose fill misses least, if any misses less. (Left only
+                // where a fill succeeds, case 3 of the fuzz fails again; as it is, case 11,
+                // which met the bounds before, fails: a search, not a construction.)
+                Err(fill::Stuck::At(v, miss))
+                    if miss > -relax::NEAR_MISS && !fixed[v as usize] && moved.insert(v) =>
+                {
+                    let mut best = (miss, prepared.position(v));
+                    for p in relax::places(&lattice, &prepared, &segments, v) {
+                        guard.check(&tree).map_err(stopped)?;
+                        prepared.relocate(v, p);
+                        let cut = cut::cut(&lattice, &prepared, &eroded);
+                        match fill::fill(&domain, &segments, &cut, &corner_side, &mut memo) {
+                            Ok(_) => {
+                                best = (f64::INFINITY, p);
+                                break;
+                            }
+                            Err(fill::Stuck::At(_, m)) if m > best.0 => best = (m, p),
+                            Err(_) => {}
+                        }
+                    }
+                    prepared.relocate(v, best.1);
+                }
+                Err(fill::Stuck::At(v, _)) if rounds < MAX_EROSIONS && !eroded[v as usize] => {
                     eroded[v as usize] = true;
                     rounds += 1;
                 }
-                Err(fill::Stuck::At(v)) => {
+                Err(fill::Stuck::At(v, _)) => {
                     let p = cut.position[v as usize];
                     return Err(Error::mesher(
                         super::NAME,

@@ -44,7 +44,8 @@ pub struct Fill {
 /// corners by their points (an erosion far from a corner leaves them as they were).
 #[derive(Debug, Default)]
 pub struct Memo {
-    wedges: HashMap<Vec<u64>, std::rc::Rc<WedgeTable>>,
+    /// Each table with a number in order of first use (for the pieces' keys).
+    wedges: HashMap<Vec<u64>, (u64, std::rc::Rc<WedgeTable>)>,
     pieces: Pieces,
 }
 
@@ -469,6 +470,7 @@ fn fill_polygon(
     // The wedges of corners below 90°: W points (the side before, by distance from c) and V
     // points (the side after), as indices into `inner`.
     let mut wedges: Vec<Option<Wedge>> = vec![None; nc];
+    let mut table_number: Vec<u64> = vec![u64::MAX; nc];
     let (mut w_pos, mut v_pos) = (vec![None; n], vec![None; n]);
     for j in 0..nc {
         if alpha[j] >= 90.0 {
@@ -500,11 +502,13 @@ fn fill_polygon(
             .chain(wp.iter().chain(&vp).flat_map(|p| [p[0], p[1]]))
             .map(f64::to_bits)
             .collect();
-        let table = memo
+        let number = memo.wedges.len() as u64;
+        let (number, table) = memo
             .wedges
             .entry(key)
-            .or_insert_with(|| std::rc::Rc::new(wedge(ring[j], alpha[j], &wp, &vp)))
+            .or_insert_with(|| (number, std::rc::Rc::new(wedge(ring[j], alpha[j], &wp, &vp))))
             .clone();
+        table_number[j] = number;
         for (a, x) in ws.iter().enumerate() {
             w_pos[x.1] = Some(a);
         }
@@ -643,14 +647,22 @@ fn fill_polygon(
         }
     }
     anchors.push((m - 1, n - 1));
-    // What each inner point is, for the pieces' keys; none for a wedge's points, whose
-    // links read a table of points beyond any piece.
-    let tags: Vec<Option<[u64; 2]>> = (0..n)
+    // What each inner point is, for the pieces' keys: a wedge's point by its place in the
+    // wedge and the wedge's table by number (its links read the table).
+    let slot = |x: Option<usize>| x.map_or(0, |a| a as u64 + 1);
+    let tags: Vec<[u64; 4]> = (0..n)
         .map(|x| match place[x] {
-            _ if w_pos[x].is_some() || v_pos[x].is_some() => None,
-            Place::Side(s, t) => Some([s as u64, t.to_bits()]),
-            Place::Corner(j) => Some([1 << 40 | j as u64, 0]),
-            Place::Ray(j, a) => Some([2 << 40 | j as u64, a.to_bits()]),
+            Place::Side(s, t) => {
+                let (w, v) = (table_number[(s + 1) % nc], table_number[s]);
+                [
+                    slot(w_pos[x]) << 32 | slot(v_pos[x]),
+                    w,
+                    v,
+                    (s as u64) << 32 ^ t.to_bits(),
+                ]
+            }
+            Place::Corner(j) => [u64::MAX, 1, j as u64, 0],
+            Place::Ray(j, a) => [u64::MAX, 2, j as u64, a.to_bits()],
         })
         .collect();
     let chain = Chain {

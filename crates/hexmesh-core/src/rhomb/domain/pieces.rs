@@ -27,15 +27,14 @@ pub struct Pieces {
 }
 
 /// A polygon's cyclic ladder as `boxes::ladder` takes it (the whole chain), with what the
-/// pieces' keys need: `tags` per inner point (two words naming what the point is, for
-/// `link`; `None` when a link at the point depends on points outside any piece, so a piece
-/// holding it is not kept) and `salt` (the polygon).
+/// pieces' keys need besides the points: `tags` per inner point (words naming what `link`
+/// reads of the point) and `salt` (the polygon).
 pub struct Chain<'c> {
     pub front: &'c [Point],
     pub inner: &'c [Point],
     pub window: &'c [(usize, usize)],
     pub back: &'c [usize],
-    pub tags: &'c [Option<[u64; 2]>],
+    pub tags: &'c [[u64; 4]],
     pub salt: u64,
 }
 
@@ -82,8 +81,7 @@ pub fn solve(
     Ok((value, done.into_iter().flat_map(|d| d.2).collect()))
 }
 
-/// The ladder between rungs a and b alone, in the chain's indices (kept by content when
-/// every inner point of it has a tag).
+/// The ladder between rungs a and b alone, in the chain's indices (kept by content).
 fn piece(
     chain: &Chain,
     (ia, xa): (usize, usize),
@@ -111,25 +109,20 @@ fn piece(
         .iter()
         .map(|&b| b.max(xa) - xa)
         .collect();
-    let key: Option<Vec<u64>> = chain.tags[xa..=xb].iter().all(Option::is_some).then(|| {
-        let mut key = vec![chain.salt, front.len() as u64, inner.len() as u64];
-        key.extend(front.iter().flat_map(|p| p.map(f64::to_bits)));
-        for (p, tag) in inner.iter().zip(&chain.tags[xa..=xb]) {
-            key.extend(p.map(f64::to_bits));
-            key.extend(tag.expect("tagged"));
-        }
-        key.extend(window.iter().flat_map(|w| [w.0 as u64, w.1 as u64]));
-        key.extend(back.iter().map(|&b| b as u64));
-        key
-    });
-    if let Some(found) = key.as_ref().and_then(|k| pieces.solved.get(k)) {
+    let mut key = vec![chain.salt, front.len() as u64, inner.len() as u64];
+    key.extend(front.iter().flat_map(|p| p.map(f64::to_bits)));
+    for (p, tag) in inner.iter().zip(&chain.tags[xa..=xb]) {
+        key.extend(p.map(f64::to_bits));
+        key.extend(tag);
+    }
+    key.extend(window.iter().flat_map(|w| [w.0 as u64, w.1 as u64]));
+    key.extend(back.iter().map(|&b| b as u64));
+    if let Some(found) = pieces.solved.get(&key) {
         return shifted(found.clone(), ia, xa);
     }
     let local_link = |k0: usize, k1: usize| link(xa + k0, xa + k1);
     let solved = ladder(front, inner, &window, (inner.len(), &back), &local_link);
-    if let Some(key) = key {
-        pieces.solved.insert(key, solved.clone());
-    }
+    pieces.solved.insert(key, solved.clone());
     shifted(solved, ia, xa)
 }
 
@@ -184,7 +177,7 @@ mod tests {
     fn a_strip_solved_in_pieces_is_covered_in_bounds_and_solved_again_from_the_kept_pieces() {
         let m = 31;
         let (front, inner, window, back) = strip(m);
-        let tags = vec![Some([0, 0]); inner.len()];
+        let tags = vec![[0; 4]; inner.len()];
         let chain = Chain {
             front: &front,
             inner: &inner,
@@ -227,7 +220,7 @@ mod tests {
         let (mut front, inner, window, back) = strip(m);
         // Corner 17 far above the others: no triangle at it keeps 30°.
         front[17][1] = 6.0;
-        let tags = vec![Some([0, 0]); inner.len()];
+        let tags = vec![[0; 4]; inner.len()];
         let chain = Chain {
             front: &front,
             inner: &inner,

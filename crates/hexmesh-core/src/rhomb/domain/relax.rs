@@ -1,15 +1,20 @@
 //! Near misses (ours, before step 16's melting and our erosion): where the best ladder
-//! misses the bounds by a little at a front corner, the corner is first moved a little
-//! within the lattice triangles it keeps, and the fill tried again from each place. In the
-//! domain fuzz a first miss of 0.27° at a notch of the front beside a reflex corner
-//! became, after the erosion that used to follow at once, a hole the ladder missed by 80°,
-//! eroded forty corners further (case 16 of seed 20261123).
+//! misses the bounds by a little at a front corner (or gets no further than it, within what
+//! it reached), the corner is first moved a little within the lattice triangles it keeps,
+//! and the fill tried again from each place. Erosion alone turns near misses into large
+//! ones: in case 16 of the domain fuzz (seed 20261123) a miss of 0.27° at a notch of the
+//! front beside a reflex corner became, two erosions later, a hole the ladder missed by 80°,
+//! and forty erosions followed. Moving first meshes case 3 of that campaign (fixture
+//! `fuzz-seed20261123-case3-holes.poly`: a miss of 1.7° after one erosion), not yet case
+//! 16; and case 11, which met the bounds by erosion alone, now takes another path and
+//! fails. It is a search, not a construction.
 
 use super::cut::{Prepared, Segments};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 use crate::mesh::TriMesh;
 
-/// Misses smaller than this (degrees) are tried with the corner moved before it is eroded.
+/// Misses smaller than this (degrees) are tried with the corner moved before it is eroded
+/// (a failure with no ladder past the corner counts by the best margin it reached).
 pub const NEAR_MISS: f64 = 5.0;
 
 /// How far inside the bounds (degrees) a kept triangle's angles stay once its corner moves.

@@ -72,6 +72,21 @@ fn every_permitted_example_and_imr_are_meshed_within_the_domain_promise() {
     }
 }
 
+/// Meshes `input` with rhomb and checks the domain promise (valid, conforming, angles in
+/// [30°, 90°] but the whole sharp corners) and input point i as vertex i.
+fn meshed_within_the_promise(input: &hexmesh::Pslg) -> hexmesh::MeshRun {
+    let run = Rhomb
+        .mesh(input, &Params::default())
+        .unwrap_or_else(|e| panic!("{e}"));
+    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
+    let verdict = hexmesh::quality::verdict(&run.mesh, Some(input), Some(&bounds));
+    assert!(verdict.passed(), "{verdict}");
+    for (i, p) in input.points.iter().enumerate() {
+        assert_eq!(run.mesh.vertices[i], *p, "input point {i}");
+    }
+    run
+}
+
 #[test]
 fn a_domain_in_projected_map_coordinates_is_meshed_within_the_domain_promise() {
     // pslg-holes moved to x ≈ 5e5, y ≈ 5e6 (UTM-like): the move is exact, the mesh is made
@@ -81,15 +96,7 @@ fn a_domain_in_projected_map_coordinates_is_meshed_within_the_domain_promise() {
     let far = |p: [f64; 2]| [p[0] + 512_000.0, p[1] + 5_040_000.0];
     input.points = input.points.iter().map(|&p| far(p)).collect();
     input.holes = input.holes.iter().map(|&p| far(p)).collect();
-    let run = Rhomb
-        .mesh(&input, &Params::default())
-        .unwrap_or_else(|e| panic!("{e}"));
-    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
-    let verdict = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
-    assert!(verdict.passed(), "{verdict}");
-    for (i, p) in input.points.iter().enumerate() {
-        assert_eq!(run.mesh.vertices[i], *p, "input point {i}");
-    }
+    let run = meshed_within_the_promise(&input);
     // The same lattice as at the origin: as many triangles.
     let near = Rhomb
         .mesh(&by_name("pslg-holes").unwrap(), &Params::default())
@@ -105,13 +112,5 @@ fn a_near_miss_beside_a_hole_is_mended_by_moving_the_front_corner_not_eroding() 
     // (`relax`) it meshes.
     let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case3-holes.poly";
     let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
-    let run = Rhomb
-        .mesh(&input, &Params::default())
-        .unwrap_or_else(|e| panic!("{e}"));
-    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
-    let verdict = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
-    assert!(verdict.passed(), "{verdict}");
-    for (i, p) in input.points.iter().enumerate() {
-        assert_eq!(run.mesh.vertices[i], *p, "input point {i}");
-    }
+    meshed_within_the_promise(&input);
 }

@@ -284,6 +284,16 @@ impl Tree {
         self.coords[p as usize]
     }
 
+    /// A first neighbour of `c` that is a coarser leaf, if any.
+    pub fn coarser_neighbour(&self, c: Cell) -> Option<Cell> {
+        AROUND
+            .iter()
+            .find_map(|&(di, dj)| match self.cover(c.offset(di, dj)) {
+                Cover::Leaf(l) if l.level < c.level => Some(l),
+                _ => None,
+            })
+    }
+
     /// Splits `target` if it is still a leaf, first splitting coarser first neighbours so the
     /// 2:1 balance holds afterwards, then any same-size side neighbour left with more than two
     /// split sides (the paper's sharper balance condition, Sec. 2).
@@ -294,13 +304,7 @@ impl Tree {
                 stack.pop();
                 continue;
             }
-            let coarser = AROUND
-                .iter()
-                .find_map(|&(di, dj)| match self.cover(c.offset(di, dj)) {
-                    Cover::Leaf(l) if l.level < c.level => Some(l),
-                    _ => None,
-                });
-            if let Some(l) = coarser {
+            if let Some(l) = self.coarser_neighbour(c) {
                 stack.push(l);
                 continue;
             }

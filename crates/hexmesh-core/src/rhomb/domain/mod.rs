@@ -268,9 +268,7 @@ fn even_band(
     segments: &cut::Segments,
     guard: &Guard,
 ) -> Result<(), Stop> {
-    use super::lattice::Cell;
-    use super::lattice::{key, AROUND};
-    use super::tree::Cover;
+    use super::lattice::{key, Cell};
     let touched = |c: Cell| {
         let corner = |di: i64, dj: i64| frame.point(key(c.level, c.i + di, c.j + dj));
         let halves = [
@@ -295,13 +293,9 @@ fn even_band(
         if !tree.is_leaf(c) {
             continue;
         }
-        let coarser = AROUND
-            .iter()
-            .find_map(|&(di, dj)| match tree.cover(c.offset(di, dj)) {
-                Cover::Leaf(l) if l.level < c.level => Some(l),
-                _ => None,
-            });
-        let Some(l) = coarser else { continue };
+        let Some(l) = tree.coarser_neighbour(c) else {
+            continue;
+        };
         tree.split(l)?;
         queue.push(c);
         let mut fresh = tree.take_fresh();

@@ -169,6 +169,29 @@ mod tests {
         (front, inner, window, back)
     }
 
+    /// The strip's chain, every inner point of one kind.
+    fn chain<'c>(
+        front: &'c [Point],
+        inner: &'c [Point],
+        window: &'c [(usize, usize)],
+        back: &'c [usize],
+        tags: &'c [[u64; 4]],
+    ) -> Chain<'c> {
+        Chain {
+            front,
+            inner,
+            window,
+            back,
+            tags,
+            salt: 0,
+        }
+    }
+
+    /// Anchors at every fifth front corner's foot of a strip of `m` corners.
+    fn every_fifth_foot(m: usize) -> Vec<(usize, usize)> {
+        (0..m).step_by(5).map(|i| (i, 2 * i)).collect()
+    }
+
     fn area(t: [Point; 3]) -> f64 {
         orient2d(t[0], t[1], t[2]) / 2.0
     }
@@ -178,15 +201,8 @@ mod tests {
         let m = 31;
         let (front, inner, window, back) = strip(m);
         let tags = vec![[0; 4]; inner.len()];
-        let chain = Chain {
-            front: &front,
-            inner: &inner,
-            window: &window,
-            back: &back,
-            tags: &tags,
-            salt: 0,
-        };
-        let anchors: Vec<(usize, usize)> = (0..m).step_by(5).map(|i| (i, 2 * i)).collect();
+        let chain = chain(&front, &inner, &window, &back, &tags);
+        let anchors = every_fifth_foot(m);
         assert_eq!(anchors.last(), Some(&(30, 60)));
         let link = |k0: usize, k1: usize| (k1 > k0).then_some(f64::INFINITY);
         let mut pieces = Pieces::default();
@@ -221,15 +237,8 @@ mod tests {
         // Corner 17 far above the others: no triangle at it keeps 30°.
         front[17][1] = 6.0;
         let tags = vec![[0; 4]; inner.len()];
-        let chain = Chain {
-            front: &front,
-            inner: &inner,
-            window: &window,
-            back: &back,
-            tags: &tags,
-            salt: 0,
-        };
-        let anchors: Vec<(usize, usize)> = (0..m).step_by(5).map(|i| (i, 2 * i)).collect();
+        let chain = chain(&front, &inner, &window, &back, &tags);
+        let anchors = every_fifth_foot(m);
         let link = |k0: usize, k1: usize| (k1 > k0).then_some(f64::INFINITY);
         let err = solve(&chain, &anchors, &link, &mut Pieces::default()).unwrap_err();
         assert!((16..=18).contains(&err.at()), "{err:?}");

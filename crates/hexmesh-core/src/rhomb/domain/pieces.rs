@@ -154,10 +154,13 @@ mod tests {
     use super::*;
     use crate::geom::orient2d;
 
+    /// A strip's front, inner points, windows and back.
+    type Strip = (Vec<Point>, Vec<Point>, Vec<(usize, usize)>, Vec<usize>);
+
     /// A straight strip: front corners one apart at height √3/2 above the x axis, and on the
     /// axis each corner's foot and the midpoints between feet (inner point 2i is corner i's
     /// foot). Returns the front, inner points, windows and back.
-    fn strip(m: usize) -> (Vec<Point>, Vec<Point>, Vec<(usize, usize)>, Vec<usize>) {
+    fn strip(m: usize) -> Strip {
         let h = 3f64.sqrt() / 2.0;
         let front: Vec<Point> = (0..m).map(|i| [i as f64, h]).collect();
         let inner: Vec<Point> = (0..2 * m - 1).map(|k| [k as f64 / 2.0, 0.0]).collect();

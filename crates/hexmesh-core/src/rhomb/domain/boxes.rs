@@ -81,6 +81,16 @@ impl Failure {
             Failure::Bounds { at, .. } => at,
         }
     }
+
+    /// By how much the best ladder keeps the bounds (negative: misses them), or −∞ where no
+    /// ladder was scored.
+    pub fn margin(&self) -> f64 {
+        match *self {
+            #[cfg(test)]
+            Failure::Front(_) => f64::NEG_INFINITY,
+            Failure::Bounds { margin, .. } => margin,
+        }
+    }
 }
 
 /// The score of triangle abc: its smallest angle's margin above 30°, or, when an angle

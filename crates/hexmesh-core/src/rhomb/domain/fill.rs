@@ -726,14 +726,8 @@ fn fill_polygon(
             }
         }
     }
-    let (_, triangles) = result.map_err(|f| {
-        let margin = match f {
-            super::boxes::Failure::Bounds { margin, .. } => margin,
-            #[allow(unreachable_patterns)]
-            _ => f64::NEG_INFINITY,
-        };
-        Stuck::At(front[order[f.at().min(m - 1)]], margin)
-    })?;
+    let (_, triangles) =
+        result.map_err(|f| Stuck::At(front[order[f.at().min(m - 1)]], f.margin()))?;
     // Output ids: lattice corners, input corners, and new points (the start foot once).
     let mut ids: Vec<Option<Id>> = vec![None; n];
     let mut id_of = |x: usize, out: &mut Fill| -> Id {

@@ -11,8 +11,9 @@
 //! polynomials (`exact`). The moved corner, the midpoint of two level-k lattice vertices, is a
 //! lattice vertex of level k + 1: its position comes from its key like every other.
 //!
-//! Corners at rhombs of different sizes and splitting points are made movable by `moving`
-//! (Sec. 5.1); their Sec. 5.2 case 2 moves are not implemented yet.
+//! The domain method uses `meets` (in `cut`); the hexagon crossing and the move are kept
+//! for the tests of `boxes` and `fan`, which build their lattices with it. `cut` moves the
+//! corners next to the boundary its own way (Sec. 5.2 case 1, generalised).
 
 #[cfg(test)]
 use super::exact::Exact;

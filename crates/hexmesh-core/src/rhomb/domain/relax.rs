@@ -10,8 +10,9 @@
 //! fails. It is a search, not a construction.
 
 use super::cut::{Prepared, Segments};
-use crate::geom::{angle_deg, dist, orient2d, Point};
+use crate::geom::{angle_deg, orient2d, Point};
 use crate::mesh::TriMesh;
+use crate::quality::feature_gap::point_segment_distance;
 
 /// Misses smaller than this (degrees) are tried with the corner moved before it is eroded
 /// (a failure with no ladder past the corner counts by the best margin it reached).
@@ -40,10 +41,7 @@ pub fn places(mesh: &TriMesh, prep: &Prepared, segments: &Segments, v: u32) -> V
             .into_iter()
             .map(|s| {
                 let [a, b] = segments.ends[s as usize];
-                let (ux, uy) = (b[0] - a[0], b[1] - a[1]);
-                let len2 = ux * ux + uy * uy;
-                let t = (((q[0] - a[0]) * ux + (q[1] - a[1]) * uy) / len2).clamp(0.0, 1.0);
-                dist(q, [a[0] + t * ux, a[1] + t * uy])
+                point_segment_distance(q, a, b)
             })
             .fold(r, f64::min)
     };

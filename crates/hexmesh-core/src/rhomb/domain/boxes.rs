@@ -103,23 +103,35 @@ pub fn score(a: Point, b: Point, c: Point) -> Option<f64> {
     }
     // The smallest angle is opposite the shortest side and the largest opposite the
     // longest: two angles, not three (ties give the same angle either way).
+    // The largest angle is measured only where it may exceed 90° (its cosine below 1e-6,
+    // 89.99994°, so the scores are those of measuring it always): most of the ladder's
+    // candidates are clear of it, and atan2 was a quarter of the ladder's time.
     let (ab, bc, ca) = (dist(a, b), dist(b, c), dist(c, a));
-    let opposite = |side: f64| {
+    let corner = |side: f64| {
         if side == ab {
-            angle_deg(c, a, b)
+            (c, a, b)
         } else if side == bc {
-            angle_deg(a, b, c)
+            (a, b, c)
         } else {
-            angle_deg(b, c, a)
+            (b, c, a)
         }
     };
-    let min = opposite(ab.min(bc).min(ca));
-    let max = opposite(ab.max(bc).max(ca));
-    Some((min - 30.0).min(if max > 90.0 {
+    let (x, y, z) = corner(ab.min(bc).min(ca));
+    let min = angle_deg(x, y, z);
+    let (x, y, z) = corner(ab.max(bc).max(ca));
+    let dot = (y[0] - x[0]) * (z[0] - x[0]) + (y[1] - x[1]) * (z[1] - x[1]);
+    let longest = ab.max(bc).max(ca);
+    let max = if dot < 1e-6 * longest * longest {
+        angle_deg(x, y, z)
+    } else {
+        0.0
+    };
+    let over = if max > 90.0 {
         90.0 - max
     } else {
         f64::INFINITY
-    }))
+    };
+    Some((min - 30.0).min(over))
 }
 
 /// Where, between the feet of front corners p and q (heights `hp`, `hq` above S, feet `gap`

@@ -135,11 +135,39 @@ pub struct Cut<'a> {
     pub loops: Vec<Vec<u32>>,
 }
 
+/// A cut's kept triangles and fronts apart from the positions: moving a corner (`relax`)
+/// changes neither, so its trials fill the same shape again.
+pub struct Shape {
+    kept: Vec<[u32; 3]>,
+    loops: Vec<Vec<u32>>,
+}
+
+impl<'a> Cut<'a> {
+    /// The kept triangles and fronts, the positions let go.
+    pub fn into_shape(self) -> Shape {
+        Shape {
+            kept: self.kept,
+            loops: self.loops,
+        }
+    }
+
+    /// `shape` over the positions `prep` has now.
+    pub fn over(prep: &'a Prepared, shape: Shape) -> Cut<'a> {
+        Cut {
+            position: &prep.position,
+            side: &prep.side,
+            kept: shape.kept,
+            loops: shape.loops,
+        }
+    }
+}
+
 /// What does not change while `fill` erodes: the adjacency, the moves, and the triangles
 /// kept before any erosion (inside the domain and untouched by it, no corner deleted, in
 /// bounds after the moves).
 pub struct Prepared {
     edge: HashMap<(u32, u32), usize>,
+    neighbours: Vec<Vec<u32>>,
     position: Vec<Point>,
     side: Vec<f64>,
     kept: Vec<bool>,
@@ -159,6 +187,16 @@ impl Prepared {
     /// Whether triangle `t` of the lattice is kept before any erosion.
     pub fn is_kept(&self, t: usize) -> bool {
         self.kept[t]
+    }
+
+    /// The lattice triangles at vertex `v` (by index), from its edges.
+    pub fn triangles_at(&self, v: u32) -> Vec<usize> {
+        let mut out: Vec<usize> = self.neighbours[v as usize]
+            .iter()
+            .filter_map(|&b| self.edge.get(&(v, b)).copied())
+            .collect();
+        out.sort_unstable();
+        out
     }
 
     /// Moves lattice vertex `v` to `p` (`relax`, which keeps its triangles in bounds).
@@ -343,6 +381,7 @@ pub fn prepare(
     }
     Prepared {
         edge,
+        neighbours,
         position,
         side,
         kept: keep,

@@ -208,11 +208,15 @@ fn build(
                     if miss > -relax::NEAR_MISS && !fixed[v as usize] && moved.insert(v) =>
                 {
                     let mut best = (miss, prepared.position(v));
+                    // A move changes no kept triangle: each trial fills the same cut.
+                    let mut shape = cut.into_shape();
                     for p in relax::places(&lattice, &prepared, &segments, v) {
                         guard.check(&tree).map_err(stopped)?;
                         prepared.relocate(v, p);
-                        let cut = cut::cut(&lattice, &prepared, &eroded);
-                        match fill::fill(&domain, &segments, &cut, &corner_side, &mut memo) {
+                        let cut = cut::Cut::over(&prepared, shape);
+                        let trial = fill::fill(&domain, &segments, &cut, &corner_side, &mut memo);
+                        shape = cut.into_shape();
+                        match trial {
                             Ok(_) => {
                                 best = (f64::INFINITY, p);
                                 break;

@@ -25,12 +25,11 @@ const KEEP: f64 = 1.0;
 /// tenths of its side, where every kept triangle at `v` stays counter-clockwise with its
 /// angles in [31°, 89°] and `v` stays at least half as far from every segment as it was.
 pub fn places(mesh: &TriMesh, prep: &Prepared, segments: &Segments, v: u32) -> Vec<Point> {
-    let at: Vec<[u32; 3]> = mesh
-        .triangles
-        .iter()
-        .enumerate()
-        .filter(|(t, tri)| prep.is_kept(*t) && tri.contains(&v))
-        .map(|(_, tri)| *tri)
+    let at: Vec<[u32; 3]> = prep
+        .triangles_at(v)
+        .into_iter()
+        .filter(|&t| prep.is_kept(t))
+        .map(|t| mesh.triangles[t])
         .collect();
     let p = prep.position(v);
     let side = prep.side(v);

@@ -59,10 +59,24 @@ pub enum Stuck {
     /// below the bounds when negative; −∞ where no ladder was tried): the caller moves or
     /// erodes it.
     At(u32, f64),
+    /// Two fronts face one polygon: the smaller, an island the cut left between deleted
+    /// triangles, has these corners; the caller erodes them all.
+    Island(Vec<u32>),
     /// The fronts do not pair with the polygons one to one: the kept lattice does not
     /// separate two polygons (one front faces both), or a polygon faces none. The tree must
     /// be finer at these points.
     Finer(Vec<Point>),
+}
+
+impl Stuck {
+    /// The lattice corner a failure names (an island's first), if any.
+    pub fn corner(&self) -> Option<u32> {
+        match self {
+            Stuck::At(v, _) => Some(*v),
+            Stuck::Island(corners) => corners.first().copied(),
+            Stuck::Finer(_) => None,
+        }
+    }
 }
 
 /// What a point of a polygon's inner chain is.
@@ -256,13 +270,13 @@ pub fn fill(
     let mut out = Fill::default();
     for (k, fronts) in front_of.iter().enumerate() {
         // Two fronts facing one polygon: the smaller is an island the cut left between
-        // deleted triangles; eroding it corner by corner joins it to the gap.
+        // deleted triangles; eroding its corners joins it to the gap.
         if fronts.len() > 1 {
             let smallest = fronts
                 .iter()
                 .min_by_key(|&&f| (cut.loops[f].len(), f))
                 .expect("two");
-            return Err(Stuck::At(cut.loops[*smallest][0], f64::NEG_INFINITY));
+            return Err(Stuck::Island(cut.loops[*smallest].clone()));
         }
         if fronts.is_empty() {
             let poly = &domain.polygons[k];

@@ -231,7 +231,14 @@ fn build(
                     eroded[v as usize] = true;
                     rounds += 1;
                 }
-                Err(fill::Stuck::At(v, _)) => {
+                Err(fill::Stuck::Island(corners)) if rounds < MAX_EROSIONS => {
+                    for v in corners {
+                        eroded[v as usize] = true;
+                    }
+                    rounds += 1;
+                }
+                Err(stuck @ (fill::Stuck::At(..) | fill::Stuck::Island(_))) => {
+                    let v = stuck.corner().expect("a failure at a corner");
                     let p = cut.position[v as usize];
                     return Err(Error::mesher(
                         super::NAME,

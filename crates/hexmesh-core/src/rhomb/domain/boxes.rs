@@ -102,10 +102,10 @@ pub fn score(a: Point, b: Point, c: Point) -> Option<f64> {
         return None;
     }
     // The smallest angle is opposite the shortest side and the largest opposite the
-    // longest: two angles, not three (ties give the same angle either way).
-    // The largest angle is measured only where it may exceed 90° (its cosine below 1e-6,
-    // 89.99994°, so the scores are those of measuring it always): most of the ladder's
-    // candidates are clear of it, and atan2 was a quarter of the ladder's time.
+    // longest (ties give the same angle either way). The largest is measured only where it
+    // may exceed 90°, its cosine below 1e-6 (89.99994°), so the scores are those of
+    // measuring it always: most of the ladder's candidates are clear of it, and atan2 was a
+    // quarter of the ladder's time.
     let (ab, bc, ca) = (dist(a, b), dist(b, c), dist(c, a));
     let corner = |side: f64| {
         if side == ab {
@@ -118,18 +118,17 @@ pub fn score(a: Point, b: Point, c: Point) -> Option<f64> {
     };
     let (x, y, z) = corner(ab.min(bc).min(ca));
     let min = angle_deg(x, y, z);
-    let (x, y, z) = corner(ab.max(bc).max(ca));
-    let dot = (y[0] - x[0]) * (z[0] - x[0]) + (y[1] - x[1]) * (z[1] - x[1]);
     let longest = ab.max(bc).max(ca);
-    let max = if dot < 1e-6 * longest * longest {
-        angle_deg(x, y, z)
-    } else {
-        0.0
-    };
-    let over = if max > 90.0 {
-        90.0 - max
-    } else {
-        f64::INFINITY
+    let (x, y, z) = corner(longest);
+    // The cosine's sign and size from sides scaled by the longest (no overflow or underflow
+    // at any scale; a NaN measures the angle).
+    let unit = |p: Point| [(p[0] - x[0]) / longest, (p[1] - x[1]) / longest];
+    let (u, w) = (unit(y), unit(z));
+    let clear = u[0] * w[0] + u[1] * w[1] >= 1e-6;
+    let max = (!clear).then(|| angle_deg(x, y, z));
+    let over = match max {
+        Some(max) if max > 90.0 => 90.0 - max,
+        _ => f64::INFINITY,
     };
     Some((min - 30.0).min(over))
 }
@@ -620,6 +619,37 @@ mod tests {
             let s = strip(&front, a, b);
             proptest::prop_assert!(s.is_ok(), "{:?}\nfront {:?}", s, front);
             check(&s.unwrap(), &front, a, b);
+        }
+
+        /// `score` measures the largest angle only where it may exceed 90°: its value is the
+        /// one measuring all three angles gives, on triangles of any shape and scale, right
+        /// triangles and near-right ones (where the two could part) among them.
+        #[test]
+        fn the_score_is_that_of_measuring_every_angle(
+            p in (-1.0..1.0f64, -1.0..1.0f64),
+            q in (-1.0..1.0f64, -1.0..1.0f64),
+            lift in -1.0..1.0f64,
+            bend in proptest::sample::select(vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3]),
+            exponent in -300i32..300,
+        ) {
+            // Triangle (p, q, r) with r on the perpendicular to pq at q, turned by `bend`
+            // radians: a right angle at q when bend is 0.
+            let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
+            let (cos, sin) = (bend.cos(), bend.sin());
+            let n = [-d[1] * cos - d[0] * sin, d[0] * cos - d[1] * sin];
+            let tri = [[p.0, p.1], [q.0, q.1], [q.0 + lift * n[0], q.1 + lift * n[1]]]
+                .map(|x| [x[0] * scale, x[1] * scale]);
+            let every = || -> Option<f64> {
+                if orient2d(tri[0], tri[1], tri[2]) <= 0.0 {
+                    return None;
+                }
+                let angles = [0, 1, 2].map(|k| angle_deg(tri[(k + 2) % 3], tri[k], tri[(k + 1) % 3]));
+                let (min, max) = (angles.iter().copied().fold(f64::INFINITY, f64::min),
+                    angles.iter().copied().fold(0.0, f64::max));
+                Some((min - 30.0).min(if max > 90.0 { 90.0 - max } else { f64::INFINITY }))
+            };
+            let got = score(tri[0], tri[1], tri[2]);
+            proptest::prop_assert_eq!(got, every(), "{:?}", tri);
         }
     }
 }

@@ -50,39 +50,36 @@ fn what_the_paper_does_not_allow_is_refused_naming_file_and_line() {
 
 #[test]
 fn every_permitted_example_and_imr_are_meshed_within_the_domain_promise() {
-    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
     let mut names: Vec<&str> = PSLG_EXAMPLES.to_vec();
     names.push("imr");
     for name in names {
         let input = by_name(name).unwrap();
-        let run = Rhomb.mesh(&input, &Params::default());
         if name == "pslg-slit" {
-            let err = run.unwrap_err().to_string();
+            let err = Rhomb
+                .mesh(&input, &Params::default())
+                .unwrap_err()
+                .to_string();
             assert!(err.contains("segment 4 ends at point 4"), "{name}: {err}");
             continue;
         }
-        let run = run.unwrap_or_else(|e| panic!("{name}: {e}"));
-        // Valid, conforming, every angle in [30°, 90°] but at input corners sharper than
-        // 30° taken whole (pslg-wedge-5's 5° corner), and input point i as vertex i.
-        let verdict = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
-        assert!(verdict.passed(), "{name}: {verdict}");
-        for (i, p) in input.points.iter().enumerate() {
-            assert_eq!(run.mesh.vertices[i], *p, "{name}: input point {i}");
-        }
+        // Every angle in [30°, 90°] but at input corners sharper than 30° taken whole
+        // (pslg-wedge-5's 5° corner).
+        meshed_within_the_promise(name, &input);
     }
 }
 
-/// Meshes `input` with rhomb and checks the domain promise (valid, conforming, angles in
-/// [30°, 90°] but the whole sharp corners) and input point i as vertex i.
-fn meshed_within_the_promise(input: &hexmesh::Pslg) -> hexmesh::MeshRun {
+/// Meshes `input` (named `name` in the messages) with rhomb and checks the domain promise
+/// (valid, conforming, angles in [30°, 90°] but the whole sharp corners) and input point i
+/// as vertex i.
+fn meshed_within_the_promise(name: &str, input: &hexmesh::Pslg) -> hexmesh::MeshRun {
     let run = Rhomb
         .mesh(input, &Params::default())
-        .unwrap_or_else(|e| panic!("{e}"));
+        .unwrap_or_else(|e| panic!("{name}: {e}"));
     let bounds = hexmesh::registry::bounds("rhomb").unwrap();
     let verdict = hexmesh::quality::verdict(&run.mesh, Some(input), Some(&bounds));
-    assert!(verdict.passed(), "{verdict}");
+    assert!(verdict.passed(), "{name}: {verdict}");
     for (i, p) in input.points.iter().enumerate() {
-        assert_eq!(run.mesh.vertices[i], *p, "input point {i}");
+        assert_eq!(run.mesh.vertices[i], *p, "{name}: input point {i}");
     }
     run
 }
@@ -96,7 +93,7 @@ fn a_domain_in_projected_map_coordinates_is_meshed_within_the_domain_promise() {
     let far = |p: [f64; 2]| [p[0] + 512_000.0, p[1] + 5_040_000.0];
     input.points = input.points.iter().map(|&p| far(p)).collect();
     input.holes = input.holes.iter().map(|&p| far(p)).collect();
-    let run = meshed_within_the_promise(&input);
+    let run = meshed_within_the_promise("pslg-holes far from the origin", &input);
     // The same lattice as at the origin: as many triangles.
     let near = Rhomb
         .mesh(&by_name("pslg-holes").unwrap(), &Params::default())
@@ -112,5 +109,5 @@ fn a_near_miss_beside_a_hole_is_mended_by_moving_the_front_corner_not_eroding() 
     // (`relax`) it meshes.
     let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case3-holes.poly";
     let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
-    meshed_within_the_promise(&input);
+    meshed_within_the_promise(path, &input);
 }

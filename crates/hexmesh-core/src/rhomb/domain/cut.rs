@@ -189,14 +189,12 @@ impl Prepared {
         self.kept[t]
     }
 
-    /// The lattice triangles at vertex `v` (by index), from its edges.
-    pub fn triangles_at(&self, v: u32) -> Vec<usize> {
-        let mut out: Vec<usize> = self.neighbours[v as usize]
+    /// The lattice triangles at vertex `v` (by index, in the order of its neighbours), each
+    /// found by its edge leaving `v`.
+    pub fn triangles_at(&self, v: u32) -> impl Iterator<Item = usize> + '_ {
+        self.neighbours[v as usize]
             .iter()
-            .filter_map(|&b| self.edge.get(&(v, b)).copied())
-            .collect();
-        out.sort_unstable();
-        out
+            .filter_map(move |&b| self.edge.get(&(v, b)).copied())
     }
 
     /// Moves lattice vertex `v` to `p` (`relax`, which keeps its triangles in bounds).

@@ -27,7 +27,6 @@ const KEEP: f64 = 1.0;
 pub fn places(mesh: &TriMesh, prep: &Prepared, segments: &Segments, v: u32) -> Vec<Point> {
     let at: Vec<[u32; 3]> = prep
         .triangles_at(v)
-        .into_iter()
         .filter(|&t| prep.is_kept(t))
         .map(|t| mesh.triangles[t])
         .collect();

@@ -6,11 +6,16 @@
 //! their defaults, Triangle 30°), the inputs are generated outside the timed call, and one
 //! untimed call first counts the triangles.
 //!
-//! `cargo bench --bench hex_vs` (about 10 minutes on 2 cores, most of it `hex` on plane-100k:
+//! `hex` and `hex-simple` run twice, on one thread (`hex/1t`: the single-thread cost the
+//! ratio to `hex-simple/1t` is about) and on all the machine's threads (`hex/2t` on 2 cores;
+//! the mesh is the same bytes); `triangle` runs on one.
+//!
+//! `cargo bench --bench hex_vs` (about 20 minutes on 2 cores, most of it `hex` on plane-100k:
 //! ten samples of one run each); `cargo bench --bench hex_vs -- plane-10k` for the small set
-//! alone.
+//! alone, `-- /1t` for the single-thread runs alone.
 
 use std::hint::black_box;
+use std::num::NonZeroUsize;
 use std::time::Duration;
 
 use criterion::{
@@ -40,17 +45,28 @@ fn hex_vs(c: &mut Criterion) {
         for mesher_name in MESHERS {
             let mesher = registry::mesher(mesher_name).expect("a registered mesher");
             let (params, _) = case_params(mesher_name);
-            let triangles = match mesher.mesh(&input, &params) {
-                Ok(run) => run.mesh.triangles.len(),
-                Err(e) => {
-                    eprintln!("skipping {mesher_name} on {name}: {e}");
-                    continue;
-                }
+            let all = params.thread_count();
+            let counts: &[usize] = match (mesher_name, all) {
+                ("triangle", _) | (_, 1) => &[1],
+                _ => &[1, all],
             };
-            group.throughput(Throughput::Elements(triangles as u64));
-            group.bench_with_input(BenchmarkId::new(mesher_name, name), &input, |b, input| {
-                b.iter(|| black_box(mesher.mesh(black_box(input), &params)))
-            });
+            for &threads in counts {
+                let params = params
+                    .clone()
+                    .with_threads(NonZeroUsize::new(threads).expect("at least one"));
+                let triangles = match mesher.mesh(&input, &params) {
+                    Ok(run) => run.mesh.triangles.len(),
+                    Err(e) => {
+                        eprintln!("skipping {mesher_name} on {name}: {e}");
+                        continue;
+                    }
+                };
+                group.throughput(Throughput::Elements(triangles as u64));
+                let id = BenchmarkId::new(format!("{mesher_name}/{threads}t"), name);
+                group.bench_with_input(id, &input, |b, input| {
+                    b.iter(|| black_box(mesher.mesh(black_box(input), &params)))
+                });
+            }
         }
     }
     group.finish();

@@ -8,6 +8,7 @@
 //! request  = "HXMI" u32:version str:mesher params pslg
 //! params   = opt<f64>:min_angle opt<f64>:max_area opt<u64>:max_steps opt<u64>:max_vertices
 //!            opt<(u64 secs, u32 nanos)>:max_time opt<f64>:max_rounding opt<str>:switches
+//!            opt<u64>:threads
 //! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64,f64,f64)>:hexagon (centre, circumradius, turn)
 //!            u64:r (f64 x, f64 y, f64 attribute, opt<f64>:max_area)×r  (the regions)
 //! answer   = payload u64:payload_len "HXMRESLT"
@@ -40,7 +41,7 @@ pub const CHILD_COMMAND: &str = "__run-mesher";
 
 const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
 const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
-const VERSION: u32 = 5;
+const VERSION: u32 = 6;
 /// How much of the child's stderr and stdout an error quotes.
 const TAIL_BYTES: usize = 2000;
 
@@ -412,6 +413,7 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
     });
     put_opt(&mut b, params.max_rounding, put_f64);
     put_opt(&mut b, params.switches.as_deref(), put_str);
+    put_opt(&mut b, params.threads, |b, n| put_u64(b, n.get() as u64));
     put_u64(&mut b, input.points.len() as u64);
     for p in &input.points {
         put_f64(&mut b, p[0]);
@@ -657,6 +659,12 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     };
     let max_rounding = if r.flag()? { Some(r.f64()?) } else { None };
     let switches = if r.flag()? { Some(r.str()?) } else { None };
+    let threads = if r.flag()? {
+        let n = usize::try_from(r.u64()?).unwrap_or(usize::MAX);
+        Some(std::num::NonZeroUsize::new(n).ok_or_else(|| r.bad("zero threads"))?)
+    } else {
+        None
+    };
     let points = r.points()?;
     let m = r.count(8)?;
     let segments = (0..m)
@@ -698,6 +706,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
             max_time,
         },
         switches,
+        threads,
     };
     // The other labels stay in the parent, which writes the mesh; the regions travel, since
     // `triangle` meshes with their area limits.
@@ -944,7 +953,8 @@ mod tests {
         let mut params = Params::default()
             .with_min_angle(30.25)
             .with_max_edge(0.125)
-            .with_switches("q25DS100 ünï");
+            .with_switches("q25DS100 ünï")
+            .with_threads(std::num::NonZeroUsize::new(3).unwrap());
         params.budget.max_time = Some(Duration::from_millis(1500));
         params.budget.max_vertices = Some(77);
         let buf = encode_request("triangle", &input, &params);

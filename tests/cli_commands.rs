@@ -497,3 +497,47 @@ fn the_hex_summary_states_near_segment_figures_apart_on_a_domain() {
     assert!(out.status.success(), "{}", text(&out));
     assert!(!String::from_utf8_lossy(&out.stderr).contains("touching a segment"));
 }
+
+#[test]
+fn the_thread_count_changes_no_byte_and_zero_threads_is_refused() {
+    let mut files = Vec::new();
+    for threads in ["1", "2"] {
+        let prefix = temp(&format!("threads-{threads}"));
+        let p = prefix.to_str().expect("utf-8");
+        let out = hexmesh(&[
+            "mesh",
+            "plane-2k",
+            "--mesher",
+            "hex",
+            "--threads",
+            threads,
+            "-o",
+            p,
+        ]);
+        assert!(out.status.success(), "{threads}: {}", text(&out));
+        let read = |ext: &str| std::fs::read(prefix.with_extension(ext)).expect("written");
+        files.push((read("node"), read("ele")));
+    }
+    assert!(
+        files[0] == files[1],
+        "1 and 2 threads wrote different files"
+    );
+    let prefix = temp("threads-0");
+    let out = hexmesh(&[
+        "mesh",
+        "plane-100",
+        "--mesher",
+        "hex",
+        "--threads",
+        "0",
+        "-o",
+        prefix.to_str().expect("utf-8"),
+    ]);
+    assert_eq!(out.status.code(), Some(2), "{}", text(&out));
+    assert!(
+        text(&out).contains("--threads must be at least 1"),
+        "{}",
+        text(&out)
+    );
+    assert!(!prefix.with_extension("node").exists());
+}

@@ -167,6 +167,10 @@ struct MeshArgs {
     /// this many degrees (README "Checks").
     #[arg(long, value_name = "DEG")]
     max_rounding: Option<f64>,
+    /// Threads hex and hex-simple may split their work over (default: as many as the
+    /// machine has); the mesh is the same bytes for every count. The other meshers run on one.
+    #[arg(long, value_name = "N")]
+    threads: Option<usize>,
     /// Output prefix: writes PREFIX.node and PREFIX.ele (and the other --format files), with
     /// the input's markers, attributes and regions carried to the mesh.
     #[arg(short = 'o', long = "out")]
@@ -347,6 +351,17 @@ fn datasets(out: &Path, scaling: bool) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
+/// `--threads`: a positive count, or none given.
+fn thread_count(threads: Option<usize>) -> Result<Option<std::num::NonZeroUsize>> {
+    threads
+        .map(|n| {
+            std::num::NonZeroUsize::new(n).ok_or_else(|| {
+                Error::Usage("--threads must be at least 1 (give none for all)".into())
+            })
+        })
+        .transpose()
+}
+
 fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     let (input, input_base) = load_input_numbered(&args.input, args.convex_hull)?;
     input.validate_input()?;
@@ -381,6 +396,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
             max_time: Some(timeout),
         },
         switches: args.triangle_switches.clone(),
+        threads: thread_count(args.threads)?,
     };
     check_triangle_switches(mesher.name(), &params)?;
     let exe = crate::isolate::find_exe()?;

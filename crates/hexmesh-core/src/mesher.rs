@@ -40,6 +40,10 @@ pub struct Params {
     /// The mesher's own options, passed through as given (Triangle's command-line switches
     /// for `triangle`); a mesher without such options refuses them (`refuse_switches`).
     pub switches: Option<String>,
+    /// How many threads a mesher that splits its work over threads may use (`hex`,
+    /// `hex-simple`); `None`: as many as the machine has (`available_parallelism`). The mesh
+    /// is the same bytes for every count.
+    pub threads: Option<std::num::NonZeroUsize>,
 }
 
 impl Params {
@@ -108,6 +112,20 @@ impl Params {
     pub fn with_switches(mut self, switches: impl Into<String>) -> Params {
         self.switches = Some(switches.into());
         self
+    }
+
+    /// These parameters letting the mesher use at most `threads` threads.
+    pub fn with_threads(mut self, threads: std::num::NonZeroUsize) -> Params {
+        self.threads = Some(threads);
+        self
+    }
+
+    /// The threads a mesher may use: `threads`, or as many as the machine has (1 where that
+    /// is unknown).
+    pub fn thread_count(&self) -> usize {
+        self.threads
+            .or_else(|| std::thread::available_parallelism().ok())
+            .map_or(1, std::num::NonZeroUsize::get)
     }
 
     /// Refuses, as a usage error naming `mesher`, options of its own (`switches`) for a mesher

@@ -224,7 +224,7 @@ fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>, wanted: &FxHashSet<Key>)
     let per_item = h.full_leaves.div_ceil(items.len().max(1));
     for items in items.chunks(wave) {
         let base = &b;
-        let parts = crate::hex::parallel::in_parallel_from(items, 2, |chunk| {
+        let parts = crate::hex::parallel::in_parallel_from(h.threads(), items, 2, |chunk| {
             let leaves = per_item * chunk.len() * 5 / 4;
             let mut part = Part {
                 index: KeyIndex::with_capacity(leaves),

@@ -174,6 +174,7 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
     )?;
     let mut h = Hierarchy::new(lattice, input.points.clone(), params.budget);
     h.set_max_rounding(params.max_rounding_deg());
+    h.set_threads(params.thread_count());
     h.set_size_level(level);
     Ok(h)
 }

@@ -1,24 +1,29 @@
-//! Long lists of independent work split over the machine's threads, with results in the
-//! order of the list (so they do not depend on the split): engineering, not in paper 000.
-//! Used by the extended rules and relocations (`extended`) and by the dual (`dual`).
+//! Long lists of independent work split over threads, with results in the order of the list
+//! (so they do not depend on the split): engineering, not in paper 000. Used by the extended
+//! rules and relocations (`extended`) and by the dual (`dual`), with the thread count of the
+//! hierarchy (`Hierarchy::threads`, from `Params::threads`).
 
 /// Lists of at least this many items are split over threads by `in_parallel`.
 pub(crate) const PARALLEL_MIN: usize = 8192;
 
-/// `f` on consecutive chunks of `items`, one per available thread (at most four) when the
-/// list is long, in order.
-pub(crate) fn in_parallel<T: Sync, R: Send>(items: &[T], f: impl Fn(&[T]) -> R + Sync) -> Vec<R> {
-    in_parallel_from(items, PARALLEL_MIN, f)
+/// `f` on consecutive chunks of `items`, one per thread of `threads` when the list is long,
+/// in order.
+pub(crate) fn in_parallel<T: Sync, R: Send>(
+    threads: usize,
+    items: &[T],
+    f: impl Fn(&[T]) -> R + Sync,
+) -> Vec<R> {
+    in_parallel_from(threads, items, PARALLEL_MIN, f)
 }
 
 /// `in_parallel` for lists of at least `min` items (fewer items of more work each).
 pub(crate) fn in_parallel_from<T: Sync, R: Send>(
+    threads: usize,
     items: &[T],
     min: usize,
     f: impl Fn(&[T]) -> R + Sync,
 ) -> Vec<R> {
-    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
-    if threads < 2 || items.len() < min {
+    if threads < 2 || items.len() < min.max(2) {
         return vec![f(items)];
     }
     let size = items.len().div_ceil(threads);
@@ -38,4 +43,24 @@ pub(crate) fn in_parallel_from<T: Sync, R: Send>(
         }
         out
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_parts_concatenated_are_the_serial_result_for_every_thread_count() {
+        let items: Vec<u32> = (0..1000).collect();
+        let serial: Vec<u32> = items.iter().map(|x| x * 3).collect();
+        for threads in 1..=9 {
+            let parts = in_parallel_from(threads, &items, 10, |c| {
+                c.iter().map(|x| x * 3).collect::<Vec<_>>()
+            });
+            assert_eq!(parts.len(), threads.min(items.len()), "{threads} threads");
+            assert_eq!(parts.concat(), serial, "{threads} threads");
+        }
+        // A short list is not split.
+        assert_eq!(in_parallel_from(4, &items[..5], 10, |c| c.len()), vec![5]);
+    }
 }

@@ -22,7 +22,7 @@ use std::time::Instant;
 use crate::error::InputError;
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, Key, KeySet, Lattice, Parents, MAX_LEVEL};
-use crate::mesher::{Budget, StopReason};
+use crate::mesher::{Budget, Params, StopReason};
 
 /// What a lattice cell is in the current subdivision.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -84,6 +84,8 @@ pub struct Hierarchy {
     start: Instant,
     /// The largest rounding allowance (degrees) a finished mesh may use (`set_max_rounding`).
     max_rounding: f64,
+    /// The threads long lists of independent work are split over (`set_threads`, `parallel`).
+    threads: usize,
     /// The deepest level a hexagon has reached.
     deepest: u8,
     /// The level every full leaf reaches to keep the size limits (`hex::size`); 0 for none.
@@ -109,6 +111,7 @@ impl Hierarchy {
         let expected = 8 * points.len() + 64;
         Hierarchy {
             max_rounding: crate::quality::rounding::DEFAULT_MAX_ROUNDING_DEG,
+            threads: Params::default().thread_count(),
             deepest: 0,
             size_level: 0,
             occupancy_changes: None,
@@ -363,6 +366,17 @@ impl Hierarchy {
     /// so small that rounding alone may move an angle by `ROUNDING_GUARD` times that.
     pub fn set_max_rounding(&mut self, degrees: f64) {
         self.max_rounding = degrees;
+    }
+
+    /// Sets how many threads the long lists of independent work (the extended rules, the
+    /// relocations, the dual) are split over; at least one. The results do not depend on it.
+    pub fn set_threads(&mut self, threads: usize) {
+        self.threads = threads.max(1);
+    }
+
+    /// The threads of `set_threads` (by default as many as the machine has).
+    pub fn threads(&self) -> usize {
+        self.threads
     }
 
     /// How far rounding may move an angle of the dual triangles between the hexagons of

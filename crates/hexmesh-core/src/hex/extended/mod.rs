@@ -78,7 +78,7 @@
 //! self-check over the whole dual once and then only near what changed (`region`), and the
 //! dual returned after local repairs spliced from the complete one and the repaired region's
 //! (`splice`) instead of extracted a second time; long candidate lists are
-//! classified on the machine's threads (`in_parallel`), with results that do not depend on
+//! classified over the hierarchy's threads (`in_parallel`), with results that do not depend on
 //! the split. The figures (fuzz campaign, dataset counts, times) are in README.md and
 //! reports/.
 //!

@@ -27,7 +27,7 @@ pub fn relocations_of(
     let leaves: Vec<Key> = leaves.into_iter().collect();
     // Each leaf's relocation depends only on the hierarchy and the rings: computed over
     // threads for long lists, then collected in the order of `leaves`.
-    let parts = in_parallel(&leaves, |chunk| {
+    let parts = in_parallel(h.threads(), &leaves, |chunk| {
         let mut out: Vec<(Key, Option<Point>)> = Vec::new();
         for &key in chunk {
             match relocation(h, r, key) {
@@ -70,7 +70,7 @@ pub fn relocations_of(
 /// peak.
 pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch, Vec<Chain>) {
     let leaves: Vec<Key> = h.full_leaves_unordered();
-    let parts = in_parallel(&leaves, |chunk| {
+    let parts = in_parallel(h.threads(), &leaves, |chunk| {
         // Only a hexagon with fins can be MOVED_CENTER_3 (`classify` reads its fins first).
         let chained = |&key: &Key| {
             let mask = fin_mask(h, key);

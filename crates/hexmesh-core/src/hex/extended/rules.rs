@@ -25,7 +25,7 @@ pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &KeySet) ->
     // (read-only), so long lists are split over the machine's threads; the result is sorted,
     // the same for any split.
     let blocks: Vec<(Key, u64)> = candidates.blocks().collect();
-    let parts = in_parallel_from(&blocks, PARALLEL_MIN / 16, |chunk| {
+    let parts = in_parallel_from(h.threads(), &blocks, PARALLEL_MIN / 16, |chunk| {
         let mut keys = Vec::new();
         for &(b, word) in chunk {
             let (subdivided, beside) = h.subdivided_block(b);

@@ -17,13 +17,55 @@
 //! check allows for constructed points). A point set has no segments: its boundary is the
 //! mesh's outer loop, marked 1.
 
-use std::collections::HashMap;
-
 use crate::geom::{orient2d_scaled, Point};
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::validate::chains::{input_vertices, walk_segments, Adjacency};
 use crate::quality::validate::regions_across;
 use crate::quality::validate::{boundary_loops, topology};
+
+/// The edges of the usable triangles by their lower vertex, as (higher vertex, edge number):
+/// room for each vertex's uses counted first, then filled as edges are met. A vertex has a
+/// handful of edges, so a look-up scans a few entries (a hash table of every edge was most of
+/// the time of writing a large mesh).
+struct EdgeIndex {
+    /// Vertex v's entries start at `start[v]`; `end[v]` is one past its last so far.
+    start: Vec<usize>,
+    end: Vec<usize>,
+    slots: Vec<(u32, usize)>,
+}
+
+impl EdgeIndex {
+    /// Empty, with room for every use of an edge by a usable triangle.
+    fn new(mesh: &TriMesh, usable: &[bool]) -> EdgeIndex {
+        let n = mesh.vertices.len();
+        let mut start = vec![0usize; n + 1];
+        for (tri, _) in mesh.triangles.iter().zip(usable).filter(|(_, &u)| u) {
+            for k in 0..3 {
+                start[tri[k].min(tri[(k + 1) % 3]) as usize + 1] += 1;
+            }
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        let end = start[..n].to_vec();
+        let slots = vec![(0, 0); start[n]];
+        EdgeIndex { start, end, slots }
+    }
+
+    /// The number of edge {a, b}, if added.
+    fn get(&self, a: u32, b: u32) -> Option<usize> {
+        let (lo, hi) = (a.min(b) as usize, a.max(b));
+        let bucket = self.slots.get(*self.start.get(lo)?..*self.end.get(lo)?)?;
+        bucket.iter().find(|s| s.0 == hi).map(|s| s.1)
+    }
+
+    /// Adds edge {a, b} (of a usable triangle, not added before) as number `e`.
+    fn add(&mut self, a: u32, b: u32, e: usize) {
+        let lo = a.min(b) as usize;
+        self.slots[self.end[lo]] = (a.max(b), e);
+        self.end[lo] += 1;
+    }
+}
 
 /// One edge of the mesh, with what the writers say about it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -103,7 +145,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     let topo = topology(mesh);
 
     // Every edge of the usable triangles, in order of first use.
-    let mut index: HashMap<(u32, u32), usize> = HashMap::with_capacity(2 * mesh.triangles.len());
+    let mut index = EdgeIndex::new(mesh, &topo.usable);
     let mut edges: Vec<Edge> = Vec::new();
     let mut uses: Vec<u32> = Vec::new();
     let with_regions = input.is_some_and(|i| !i.labels.regions.is_empty());
@@ -113,7 +155,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
         }
         for k in 0..3 {
             let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            let e = *index.entry((a.min(b), a.max(b))).or_insert_with(|| {
+            let e = index.get(a, b).unwrap_or_else(|| {
                 edges.push(Edge {
                     vertices: [a, b],
                     boundary: false,
@@ -121,6 +163,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
                     marker: 0,
                 });
                 uses.push(0);
+                index.add(a, b, edges.len() - 1);
                 edges.len() - 1
             });
             uses[e] += 1;
@@ -129,7 +172,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     for (edge, &u) in edges.iter_mut().zip(&uses) {
         edge.boundary = u == 1;
     }
-    let edge_of = |a: u32, b: u32| index.get(&(a.min(b), a.max(b))).copied();
+    let edge_of = |a: u32, b: u32| index.get(a, b);
 
     // The chains of edges along the input segments; the first segment in input order wins.
     let mut chain_vertices: Vec<(u32, u32)> = Vec::new(); // (vertex, segment)

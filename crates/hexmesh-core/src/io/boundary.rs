@@ -141,40 +141,57 @@ impl Boundary {
 /// Derives the boundary of `mesh` from the mesh and, when given, its input (see the module
 /// documentation for the conventions). Deterministic: no hash order reaches the result.
 pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
+    derive(mesh, input, true)
+}
+
+/// `derive_boundary` with `edges` and `loops` left empty: the vertex markers and attributes
+/// and the triangle regions, which the `.node`, `.ele`, VTK and VTU files carry, without the
+/// list of every edge (32 bytes an edge; at 12 million triangles most of the time of writing
+/// those files went into it).
+pub(crate) fn derive_labels(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
+    derive(mesh, input, false)
+}
+
+/// `derive_boundary`, with the edges and loops only when `with_edges`.
+fn derive(mesh: &TriMesh, input: Option<&Pslg>, with_edges: bool) -> Boundary {
     let n = mesh.vertices.len();
     let topo = topology(mesh);
 
     // Every edge of the usable triangles, in order of first use.
-    let mut index = EdgeIndex::new(mesh, &topo.usable);
+    let mut index = with_edges.then(|| EdgeIndex::new(mesh, &topo.usable));
     let mut edges: Vec<Edge> = Vec::new();
     let mut uses: Vec<u32> = Vec::new();
     let with_regions = input.is_some_and(|i| !i.labels.regions.is_empty());
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        if !topo.usable[t] {
-            continue;
-        }
-        for k in 0..3 {
-            let (a, b) = (tri[k], tri[(k + 1) % 3]);
-            let e = index.get(a, b).unwrap_or_else(|| {
-                edges.push(Edge {
-                    vertices: [a, b],
-                    boundary: false,
-                    segment: None,
-                    marker: 0,
+    if let Some(index) = index.as_mut() {
+        for (t, tri) in mesh.triangles.iter().enumerate() {
+            if !topo.usable[t] {
+                continue;
+            }
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let e = index.get(a, b).unwrap_or_else(|| {
+                    edges.push(Edge {
+                        vertices: [a, b],
+                        boundary: false,
+                        segment: None,
+                        marker: 0,
+                    });
+                    uses.push(0);
+                    index.add(a, b, edges.len() - 1);
+                    edges.len() - 1
                 });
-                uses.push(0);
-                index.add(a, b, edges.len() - 1);
-                edges.len() - 1
-            });
-            uses[e] += 1;
+                uses[e] += 1;
+            }
         }
     }
     for (edge, &u) in edges.iter_mut().zip(&uses) {
         edge.boundary = u == 1;
     }
-    let edge_of = |a: u32, b: u32| index.get(a, b);
+    let edge_of = |a: u32, b: u32| index.as_ref().and_then(|i| i.get(a, b));
 
     // The chains of edges along the input segments; the first segment in input order wins.
+    // Their edges as (lower, higher) vertex, sorted, for the regions.
+    let mut on_segments: Vec<(u32, u32)> = Vec::new();
     let mut chain_vertices: Vec<(u32, u32)> = Vec::new(); // (vertex, segment)
     let labels = input.map(|i| &i.labels);
     let vertex_of = input.map_or_else(Vec::new, |i| input_vertices(mesh, i));
@@ -186,6 +203,7 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
                 if let Some(e) = edge_of(u, w) {
                     edges[e].segment.get_or_insert(s);
                 }
+                on_segments.push((u.min(w), u.max(w)));
                 chain_vertices.extend([(u, s), (w, s)]);
             }
             chain_vertices.extend(walked.ends.map(|v| (v, s)));
@@ -207,10 +225,10 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
     // Vertex markers: input marker, else the first marked segment through it, else boundary.
     chain_vertices.sort_unstable_by_key(|&(v, s)| (s, v));
     let mut vertex_markers = vec![0i64; n];
-    for edge in edges.iter().filter(|e| e.boundary) {
-        for v in edge.vertices {
-            vertex_markers[v as usize] = 1;
-        }
+    // The ends of the edges used once (`edges`' boundary edges, when they are listed).
+    for edge in &topo.boundary {
+        vertex_markers[edge.from as usize] = 1;
+        vertex_markers[edge.to as usize] = 1;
     }
     // Segments in reverse input order, so that the first one through a vertex writes last.
     for &(v, s) in chain_vertices.iter().rev() {
@@ -236,7 +254,11 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
 
     // Boundary loops, through the fan where loops touch, as the validity check splits them.
     let mut ignored = Vec::new();
-    let loops = boundary_loops(mesh, &topo, &topo.boundary, &mut ignored)
+    let found = match with_edges {
+        true => boundary_loops(mesh, &topo, &topo.boundary, &mut ignored),
+        false => Vec::new(),
+    };
+    let loops = found
         .into_iter()
         .map(|l| {
             let directed: Vec<[u32; 2]> = l
@@ -258,8 +280,9 @@ pub fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
         // The flood fill the area-limit check uses too (`quality::triangle_regions`).
         Some(input) if with_regions => {
             // The segments' edges are known here: no second walk along them.
+            on_segments.sort_unstable();
             let on_segment =
-                |u: u32, v: u32| edge_of(u, v).is_some_and(|e| edges[e].segment.is_some());
+                |u: u32, v: u32| on_segments.binary_search(&(u.min(v), u.max(v))).is_ok();
             let attributes = regions_across(mesh, input, &topo, on_segment)
                 .into_iter()
                 .map(|r| r.map_or(0.0, |k| input.labels.regions[k].attribute))
@@ -389,6 +412,23 @@ mod tests {
             ..Pslg::default()
         };
         (mesh, input)
+    }
+
+    /// `super::derive_boundary`, checking on the way that `derive_labels` gives the same
+    /// labels without the edges and loops: every test here checks both.
+    fn derive_boundary(mesh: &TriMesh, input: Option<&Pslg>) -> Boundary {
+        let full = super::derive_boundary(mesh, input);
+        let labels = derive_labels(mesh, input);
+        let without_edges = Boundary {
+            edges: Vec::new(),
+            loops: Vec::new(),
+            ..full.clone()
+        };
+        assert_eq!(
+            labels, without_edges,
+            "the labels derived without the edges"
+        );
+        full
     }
 
     fn marker_of(b: &Boundary, u: u32, v: u32) -> i64 {

@@ -97,9 +97,19 @@ pub fn write_mesh_with(
             })?;
     }
     let targets = mesh_files(prefix, formats);
+    // Only .poly, .edge and .msh files list edges and loops.
+    let with_edges = targets.iter().any(|t| {
+        matches!(
+            t.extension().and_then(|e| e.to_str()),
+            Some("poly" | "edge" | "msh")
+        )
+    });
     let mut boundary: Option<Boundary> = None;
     let write = |target: &Path, path: &Path| -> Result<()> {
-        let b = &*boundary.get_or_insert_with(|| derive_boundary(mesh, input));
+        let b = &*boundary.get_or_insert_with(|| match with_edges {
+            true => derive_boundary(mesh, input),
+            false => super::boundary::derive_labels(mesh, input),
+        });
         match target.extension().and_then(|e| e.to_str()) {
             Some("node") => write_node(path, &node_file(mesh, b)),
             Some("ele") => write_ele(path, &ele_file(mesh, b)),

@@ -1038,8 +1038,8 @@ mod tests {
             assert!(decode_request(&buf[..cut]).is_err(), "cut at {cut}");
         }
         let mut huge = buf.clone();
-        // The point count sits right after magic, version, name and eight absent options.
-        let at = 4 + 4 + 4 + 5 + 8;
+        // The point count sits right after magic, version, name and nine absent options.
+        let at = 4 + 4 + 4 + 5 + 9;
         huge[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
         let e = decode_request(&huge).unwrap_err().to_string();
         assert!(e.contains("exceeds the message"), "{e}");

@@ -24,6 +24,8 @@ pub struct MeshProgress {
     start: Instant,
     mesher: String,
     last_read: Option<Duration>,
+    /// A line was drawn and cleared (`clear`): the next phase is drawn at once.
+    cleared: bool,
 }
 
 impl MeshProgress {
@@ -43,6 +45,7 @@ impl MeshProgress {
             start: Instant::now(),
             mesher: mesher.to_string(),
             last_read: None,
+            cleared: false,
         }
     }
 
@@ -66,7 +69,7 @@ impl MeshProgress {
     /// A step after the meshing (writing the files, checking the mesh), shown when the run
     /// has already taken a second.
     pub fn phase(&mut self, what: &str) {
-        if self.bar.is_some() || self.start.elapsed() >= SHOW_AFTER {
+        if self.bar.is_some() || self.cleared || self.start.elapsed() >= SHOW_AFTER {
             self.show(what.to_string());
         }
     }
@@ -75,6 +78,15 @@ impl MeshProgress {
     #[cfg(test)]
     fn is_shown(&self) -> bool {
         self.bar.is_some()
+    }
+
+    /// Clears the line for the command's own output; a later `phase` draws it again (the
+    /// elapsed time still counting from the start of the run).
+    pub fn clear(&mut self) {
+        if let Some(bar) = self.bar.take() {
+            bar.finish_and_clear();
+            self.cleared = true;
+        }
     }
 
     /// Clears the line (the command's own output follows); dropping the progress does too,
@@ -157,6 +169,11 @@ mod tests {
         p.meshing(Duration::from_millis(1000), std::process::id());
         assert!(p.is_shown());
         p.phase("writing the files");
+        assert!(p.is_shown());
+        // Cleared for the command's output, drawn again for the check.
+        p.clear();
+        assert!(!p.is_shown());
+        p.phase("checking the mesh against its promise");
         assert!(p.is_shown());
         p.finish();
     }

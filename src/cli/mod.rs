@@ -432,7 +432,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     }
     progress.phase("writing the files");
     let written = crate::io::write_mesh_with(&args.prefix, &run.mesh, Some(&input), &formats);
-    progress.finish();
+    progress.clear();
     let written = written?;
     eprintln!(
         "{}: {} vertices, {} triangles in {:.3} s ({})",
@@ -475,8 +475,10 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     let failed = if args.no_check {
         None
     } else {
+        progress.phase("checking the mesh against its promise");
         failed_promise(mesher.as_ref(), &params, (&input, input_base), &run.mesh)
     };
+    progress.finish();
     if let Some(path) = &args.hexagons {
         match mesher.name() {
             "hex-simple" => crate::hex::write_hexagons_svg(&input, &params, path)?,

@@ -127,6 +127,34 @@ fn two_triangles_touching_at_a_corner_are_valid_but_not_one_disc() {
 }
 
 #[test]
+fn two_fans_touching_at_a_vertex_are_two_loops_not_a_figure_eight() {
+    // Vertex 6 is the apex of two fans of two triangles each. The loop starting at edge 0-1
+    // reaches 6 from the first fan; leaving by the lowest-numbered edge (6-2) would cross
+    // into the other fan: only the walk around 6 through the shared edge 0-6 finds 6-4.
+    let m = mesh(
+        &[
+            [1.0, 1.0],
+            [0.0, 1.0],
+            [-1.0, 0.0],
+            [-1.0, -1.0],
+            [1.0, 0.0],
+            [0.0, -1.0],
+            [0.0, 0.0],
+        ],
+        &[[6, 4, 0], [6, 0, 1], [6, 2, 3], [6, 3, 5]],
+    );
+    assert_eq!(validate(&m, None, &ValidateOptions::default()), vec![]);
+    let v = validate(&m, None, &ONE_DISC);
+    assert!(
+        matches!(
+            v.as_slice(),
+            [Violation::HoleInMesh { loops: 2, pinched_at, .. }] if pinched_at == &[6]
+        ),
+        "{v:#?}"
+    );
+}
+
+#[test]
 fn two_triangles_crossing_at_a_shared_corner_overlap() {
     // Both triangles have corner 0; the second one's wedge reaches into the first one.
     let m = mesh(

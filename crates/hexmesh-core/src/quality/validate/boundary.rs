@@ -50,12 +50,18 @@ pub(crate) fn boundary_loops(
         }
     }
 
-    // Directed edge -> triangle, for the fan walk; boundary is sorted by (from, to).
-    let mut directed: Vec<(u32, u32, usize)> = topo
-        .interior
-        .iter()
-        .flat_map(|&(u, v, t1, t2)| [(u, v, t1), (v, u, t2)])
-        .collect();
+    // Directed edge -> triangle, for the fan walk; boundary is sorted by (from, to). Only a
+    // vertex with several outgoing boundary edges needs the walk (below), and most meshes have
+    // none: then the table of every interior edge is not built.
+    let fans_to_walk = outgoing.values().any(|&o| o > 1);
+    let mut directed: Vec<(u32, u32, usize)> = match fans_to_walk {
+        true => topo
+            .interior
+            .iter()
+            .flat_map(|&(u, v, t1, t2)| [(u, v, t1), (v, u, t2)])
+            .collect(),
+        false => Vec::new(),
+    };
     directed.sort_unstable();
     let twin_triangle = |from: u32, to: u32| -> Option<usize> {
         directed
@@ -71,9 +77,14 @@ pub(crate) fn boundary_loops(
         let tri = mesh.triangles[t];
         (0..3).find(|&k| tri[k] == v).map(|k| tri[(k + 1) % 3])
     };
-    // The boundary edge leaving `v` in the fan that edge `e` (arriving at v) belongs to.
+    // The boundary edge leaving `v` in the fan that edge `e` (arriving at v) belongs to; `None`
+    // also where v has at most one outgoing boundary edge, which the walk could only find
+    // (or miss) and the scan below takes just the same.
     let fan_successor = |e: &DirectedEdge| -> Option<usize> {
         let v = e.to;
+        if outgoing.get(&v).copied().unwrap_or(0) <= 1 {
+            return None;
+        }
         let mut t = e.triangle;
         // Each step is a bijection between the triangles at v (every directed interior
         // edge names one triangle), so the walk ends at a boundary edge or comes back.

@@ -18,24 +18,31 @@
 //! mesh's outer loop, marked 1.
 
 use crate::geom::{orient2d_scaled, Point};
+use crate::hex::fxhash::FxHashMap;
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::validate::chains::{input_vertices, walk_segments, Adjacency};
 use crate::quality::validate::regions_across;
 use crate::quality::validate::{boundary_loops, topology};
 
 /// The edges of the usable triangles by their lower vertex, as (higher vertex, edge number):
-/// room for each vertex's uses counted first, then filled as edges are met. A vertex has a
-/// handful of edges, so a look-up scans a few entries (a hash table of every edge was most of
-/// the time of writing a large mesh).
+/// room for each vertex's first `BUCKET` edges counted first, then filled as edges are met,
+/// and a hash table for the edges beyond (a vertex with many edges, such as the hub of a fan,
+/// would make the scans quadratic). Most vertices have a handful of edges, so a look-up scans
+/// a few entries: a hash table of every edge was most of the time of writing a large mesh.
 struct EdgeIndex {
     /// Vertex v's entries start at `start[v]`; `end[v]` is one past its last so far.
     start: Vec<usize>,
     end: Vec<usize>,
     slots: Vec<(u32, usize)>,
+    /// The edges of a vertex beyond its first `BUCKET`, by (lower, higher) vertex.
+    beyond: FxHashMap<(u32, u32), usize>,
 }
 
+/// The edges of a vertex kept in its bucket; the others go to `EdgeIndex::beyond`.
+const BUCKET: usize = 16;
+
 impl EdgeIndex {
-    /// Empty, with room for every use of an edge by a usable triangle.
+    /// Empty, with room for the uses of an edge by a usable triangle (up to `BUCKET` a vertex).
     fn new(mesh: &TriMesh, usable: &[bool]) -> EdgeIndex {
         let n = mesh.vertices.len();
         let mut start = vec![0usize; n + 1];
@@ -45,25 +52,38 @@ impl EdgeIndex {
             }
         }
         for v in 0..n {
-            start[v + 1] += start[v];
+            start[v + 1] = start[v] + start[v + 1].min(BUCKET);
         }
         let end = start[..n].to_vec();
         let slots = vec![(0, 0); start[n]];
-        EdgeIndex { start, end, slots }
+        EdgeIndex {
+            start,
+            end,
+            slots,
+            beyond: FxHashMap::default(),
+        }
     }
 
     /// The number of edge {a, b}, if added.
     fn get(&self, a: u32, b: u32) -> Option<usize> {
         let (lo, hi) = (a.min(b) as usize, a.max(b));
-        let bucket = self.slots.get(*self.start.get(lo)?..*self.end.get(lo)?)?;
-        bucket.iter().find(|s| s.0 == hi).map(|s| s.1)
+        let (from, to) = (*self.start.get(lo)?, *self.end.get(lo)?);
+        let found = self.slots[from..to].iter().find(|s| s.0 == hi).map(|s| s.1);
+        match found {
+            None if to - from == BUCKET => self.beyond.get(&(lo as u32, hi)).copied(),
+            _ => found,
+        }
     }
 
     /// Adds edge {a, b} (of a usable triangle, not added before) as number `e`.
     fn add(&mut self, a: u32, b: u32, e: usize) {
         let lo = a.min(b) as usize;
-        self.slots[self.end[lo]] = (a.max(b), e);
-        self.end[lo] += 1;
+        if self.end[lo] - self.start[lo] < BUCKET {
+            self.slots[self.end[lo]] = (a.max(b), e);
+            self.end[lo] += 1;
+        } else {
+            self.beyond.insert((a.min(b), a.max(b)), e);
+        }
     }
 }
 
@@ -437,6 +457,32 @@ mod tests {
             .find(|e| e.vertices == [u, v] || e.vertices == [v, u])
             .map(|e| e.marker)
             .expect("edge")
+    }
+
+    #[test]
+    fn the_hub_of_a_fan_has_each_of_its_edges_once() {
+        // Vertex 0 has 200 edges, beyond the bucket of `EdgeIndex`: a look-up there must find
+        // the edges kept in its table, or they would be listed again.
+        let m = 200u32;
+        let mut vertices = vec![[0.0, 0.0]];
+        vertices.extend((0..m).map(|i| {
+            let a = std::f64::consts::PI * f64::from(i) / f64::from(m);
+            [a.cos(), a.sin()]
+        }));
+        let mesh = TriMesh {
+            vertices,
+            triangles: (1..m).map(|i| [0, i, i + 1]).collect(),
+        };
+        let b = derive_boundary(&mesh, None);
+        // m spokes and m - 1 rim edges; the rim and the two outer spokes are the boundary.
+        assert_eq!(b.edges.len(), 2 * m as usize - 1);
+        assert_eq!(
+            b.edges.iter().filter(|e| e.boundary).count(),
+            m as usize + 1
+        );
+        assert_eq!(b.loops.len(), 1);
+        assert_eq!(b.loops[0].edges.len(), m as usize + 1);
+        assert!(b.vertex_markers.iter().all(|&k| k == 1));
     }
 
     #[test]

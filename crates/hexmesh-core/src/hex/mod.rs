@@ -174,7 +174,10 @@ pub(crate) fn new_hierarchy(input: &Pslg, params: &Params, mesher: &str) -> Resu
     )?;
     let mut h = Hierarchy::new(lattice, input.points.clone(), params.budget);
     h.set_max_rounding(params.max_rounding_deg());
-    h.set_threads(params.thread_count());
+    // `Hierarchy::new` takes every thread the machine has; only a count given changes it.
+    if let Some(threads) = params.threads {
+        h.set_threads(threads.get());
+    }
     h.set_size_level(level);
     Ok(h)
 }

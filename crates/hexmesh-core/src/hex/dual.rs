@@ -224,20 +224,20 @@ fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>, wanted: &FxHashSet<Key>)
     let per_item = h.full_leaves.div_ceil(items.len().max(1));
     for items in items.chunks(wave) {
         let base = &b;
-        let parts = crate::hex::parallel::in_parallel_from(h.threads(), items, 2, |chunk| {
-            let leaves = per_item * chunk.len() * 5 / 4;
+        // One part a subtree, handed out to the threads as they come free: the subtrees of
+        // a wave differ several times in size, and halves of a wave kept one thread waiting.
+        // A vertex two parts share lies on the lattice lines (`on_lines`), where `absorb`
+        // finds it in the index whichever parts met it.
+        let leaves = per_item * 5 / 4;
+        let parts = crate::hex::parallel::each_in_parallel(h.threads(), items, |item| {
             let mut part = Part {
                 index: KeyIndex::with_capacity(leaves),
                 vertices: Vec::with_capacity(leaves),
                 triangles: Vec::with_capacity(2 * leaves),
             };
-            for item in chunk {
-                match *item {
-                    Item::Emit(tri) => part.emit(base, tri),
-                    Item::Descend(tri) => {
-                        descend(h, vec![tri], &|_| true, &mut |t| part.emit(base, t))
-                    }
-                }
+            match *item {
+                Item::Emit(tri) => part.emit(base, tri),
+                Item::Descend(tri) => descend(h, vec![tri], &|_| true, &mut |t| part.emit(base, t)),
             }
             // Only the vertices and triangles are merged.
             part.index = KeyIndex::default();

@@ -1,7 +1,7 @@
 //! Long lists of independent work split over threads, with results in the order of the list
 //! (so they do not depend on the split): engineering, not in paper 000. Used by the extended
-//! rules and relocations (`extended`) and by the dual (`dual`), with the thread count of the
-//! hierarchy (`Hierarchy::threads`, from `Params::threads`).
+//! rules, relocations and self-check (`extended`) and by the dual (`dual`), with the thread
+//! count of the hierarchy (`Hierarchy::threads`, from `Params::threads`).
 
 /// Lists of at least this many items are split over threads by `in_parallel`.
 pub(crate) const PARALLEL_MIN: usize = 8192;
@@ -45,6 +45,70 @@ pub(crate) fn in_parallel_from<T: Sync, R: Send>(
     })
 }
 
+/// `f` on consecutive ranges of `0..n`, one per thread of `threads` when `n` is at least
+/// `min`, in order.
+pub(crate) fn ranges_in_parallel<R: Send>(
+    threads: usize,
+    n: usize,
+    min: usize,
+    f: impl Fn(std::ops::Range<usize>) -> R + Sync,
+) -> Vec<R> {
+    let starts: Vec<usize> = if threads < 2 || n < min.max(2) {
+        vec![0]
+    } else {
+        let size = n.div_ceil(threads);
+        (0..n).step_by(size).collect()
+    };
+    in_parallel_from(threads, &starts, 2, |chunk| {
+        let from = chunk[0];
+        let to = starts
+            .get(starts.partition_point(|&s| s <= chunk[chunk.len() - 1]))
+            .copied()
+            .unwrap_or(n);
+        f(from..to)
+    })
+}
+
+/// `f` on each of `items`, handed out one at a time to `threads` threads as each finishes
+/// its last, so that items of uneven cost share out evenly; the results in the order of the
+/// items.
+pub(crate) fn each_in_parallel<T: Sync, R: Send>(
+    threads: usize,
+    items: &[T],
+    f: impl Fn(&T) -> R + Sync,
+) -> Vec<R> {
+    if threads < 2 || items.len() < 2 {
+        return items.iter().map(f).collect();
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let work = || {
+        let mut done = Vec::new();
+        loop {
+            let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            let Some(item) = items.get(i) else {
+                return done;
+            };
+            done.push((i, f(item)));
+        }
+    };
+    let mut all = std::thread::scope(|scope| {
+        let work = &work;
+        let handles: Vec<_> = (1..threads.min(items.len()))
+            .map(|_| scope.spawn(work))
+            .collect();
+        let mut all = work();
+        for handle in handles {
+            match handle.join() {
+                Ok(done) => all.extend(done),
+                Err(panic) => std::panic::resume_unwind(panic),
+            }
+        }
+        all
+    });
+    all.sort_unstable_by_key(|d| d.0);
+    all.into_iter().map(|d| d.1).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -62,5 +126,35 @@ mod tests {
         }
         // A short list is not split.
         assert_eq!(in_parallel_from(4, &items[..5], 10, |c| c.len()), vec![5]);
+    }
+
+    #[test]
+    fn the_ranges_cover_every_index_once_in_order() {
+        for n in [0, 1, 2, 9, 100, 101] {
+            for threads in 1..=4 {
+                let parts = ranges_in_parallel(threads, n, 2, |r| r.collect::<Vec<_>>());
+                assert_eq!(parts.concat(), (0..n).collect::<Vec<_>>(), "{n} {threads}");
+                // Split when there is something to split, into at most one range a thread.
+                let split = n >= 2 && threads > 1;
+                assert_eq!(parts.len() > 1, split, "{n} {threads}");
+                assert!(parts.len() <= threads.max(1), "{n} {threads}");
+            }
+        }
+    }
+
+    #[test]
+    fn items_handed_out_one_at_a_time_come_back_in_their_order() {
+        // Uneven costs, so that the threads finish items out of order.
+        let items: Vec<u64> = (0..200).map(|i| (i * 7919) % 50).collect();
+        let cost = |&n: &u64| (0..n * 1000).fold(n, |a, x| a.wrapping_mul(31).wrapping_add(x));
+        let serial: Vec<u64> = items.iter().map(cost).collect();
+        for threads in 1..=5 {
+            assert_eq!(
+                each_in_parallel(threads, &items, cost),
+                serial,
+                "{threads} threads"
+            );
+        }
+        assert!(each_in_parallel(3, &items[..0], cost).is_empty());
     }
 }

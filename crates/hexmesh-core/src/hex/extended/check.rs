@@ -10,6 +10,7 @@ use crate::error::{Error, Result};
 use crate::geom::angle_deg;
 use crate::geom::{incircle, orient2d, Point};
 use crate::hex::lattice::Key;
+use crate::hex::parallel::{ranges_in_parallel, PARALLEL_MIN};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 use crate::quality::rounding;
@@ -49,19 +50,20 @@ pub(super) fn offending_leaves(
     rounding_pairs: &mut u64,
 ) -> Vec<BadTriangle> {
     let filter = HEX.angle_filter();
-    let mut bad_tris: Vec<usize> = Vec::new();
-    for t in 0..mesh.triangles.len() {
-        let c = mesh.corners(t);
-        if filter.clearly_within(&c) {
-            continue;
-        }
-        if breaks_bounds(&c) {
-            bad_tris.push(t);
-        }
-    }
+    // Triangle by triangle, over the hierarchy's threads in ranges, concatenated in order.
+    let mut bad_tris: Vec<usize> =
+        ranges_in_parallel(h.threads(), mesh.triangles.len(), PARALLEL_MIN, |range| {
+            range
+                .filter(|&t| {
+                    let c = mesh.corners(t);
+                    !filter.clearly_within(&c) && breaks_bounds(&c)
+                })
+                .collect::<Vec<_>>()
+        })
+        .concat();
     // A pair that only rounding made non-Delaunay is flipped once the mesh is finished
     // (`settle_rounding`), not refined.
-    for (t, u) in delaunay_violations(mesh) {
+    for (t, u) in delaunay_violations_over(mesh, h.threads()) {
         if rounding_made(mesh, t, u) {
             *rounding_pairs += 1;
         } else {
@@ -92,6 +94,12 @@ pub(super) fn offending_leaves(
 /// Pairs of triangles sharing an edge where the opposite vertex of one lies strictly inside
 /// the circumcircle of the other (exact `incircle`).
 pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
+    delaunay_violations_over(mesh, 1)
+}
+
+/// `delaunay_violations` with the triangles tested over `threads` threads in ranges (the
+/// pairs in the same order).
+pub(super) fn delaunay_violations_over(mesh: &TriMesh, threads: usize) -> Vec<(usize, usize)> {
     // The triangles around each vertex (a counting sort), so that the other triangle of an
     // edge is found among the few around one of its ends: 12 bytes a triangle, where a list
     // of the edges with their triangles and opposite vertices took 36 (4 GB at plane-1m,
@@ -120,29 +128,33 @@ pub fn delaunay_violations(mesh: &TriMesh) -> Vec<(usize, usize)> {
     }
     // Now v's triangles are star[start[v]..start[v + 1]].
     let around = |v: u32| &star[start[v as usize] as usize..start[v as usize + 1] as usize];
-    let mut out = Vec::new();
-    for (t, tri) in mesh.triangles.iter().enumerate() {
-        for e in 0..3 {
-            let (a, b) = (tri[e], tri[(e + 1) % 3]);
-            for &u in around(a.min(b)) {
-                if u as usize <= t {
-                    continue;
-                }
-                let other = mesh.triangles[u as usize];
-                if !other.contains(&a.max(b)) {
-                    continue;
-                }
-                let Some(&opp) = other.iter().find(|&&w| w != a && w != b) else {
-                    continue;
-                };
-                let [p, q, r] = mesh.corners(t);
-                if incircle(p, q, r, mesh.vertices[opp as usize]) > 0.0 {
-                    out.push((t, u as usize));
+    ranges_in_parallel(threads, mesh.triangles.len(), PARALLEL_MIN, |range| {
+        let mut out = Vec::new();
+        for t in range {
+            let tri = mesh.triangles[t];
+            for e in 0..3 {
+                let (a, b) = (tri[e], tri[(e + 1) % 3]);
+                for &u in around(a.min(b)) {
+                    if u as usize <= t {
+                        continue;
+                    }
+                    let other = mesh.triangles[u as usize];
+                    if !other.contains(&a.max(b)) {
+                        continue;
+                    }
+                    let Some(&opp) = other.iter().find(|&&w| w != a && w != b) else {
+                        continue;
+                    };
+                    let [p, q, r] = mesh.corners(t);
+                    if incircle(p, q, r, mesh.vertices[opp as usize]) > 0.0 {
+                        out.push((t, u as usize));
+                    }
                 }
             }
         }
-    }
-    out
+        out
+    })
+    .concat()
 }
 
 /// The pair (t, u) sharing an edge, as (p, q, w1, w2): t = (p, q, w1) and u = (q, p, w2), both

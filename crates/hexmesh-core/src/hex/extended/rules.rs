@@ -21,22 +21,22 @@ pub(crate) fn extended_actions(h: &Hierarchy, r: &Rings, candidates: &KeySet) ->
     // Only an unsubdivided cell with a subdivided neighbour (a full leaf with fins) has a rule
     // here, and most candidates have none: a whole block of candidates is sifted with its
     // subdivided cells and theirs beside it at once (`Hierarchy::subdivided_block`), and only
-    // what is left is examined cell by cell. The blocks are examined independently
-    // (read-only), so long lists are split over the machine's threads; the result is sorted,
-    // the same for any split.
-    let blocks: Vec<(Key, u64)> = candidates.blocks().collect();
-    let parts = in_parallel_from(h.threads(), &blocks, PARALLEL_MIN / 16, |chunk| {
-        let mut keys = Vec::new();
-        for &(b, word) in chunk {
-            let (subdivided, beside) = h.subdivided_block(b);
-            let mut left = word & !subdivided & beside;
-            while left != 0 {
-                let n = left.trailing_zeros() as i64;
-                left &= left - 1;
-                keys.push(KeySet::cell_in_block(b, n));
-            }
+    // what is left is examined cell by cell. What is left is split evenly over the machine's
+    // threads (read-only): the blocks themselves are not, since the finer levels' blocks keep
+    // several times as many cells (at plane-100k the second of two halves of the blocks held
+    // five times the cells of the first). The result is sorted, the same for any split.
+    let mut keys = Vec::new();
+    for (b, word) in candidates.blocks() {
+        let (subdivided, beside) = h.subdivided_block(b);
+        let mut left = word & !subdivided & beside;
+        while left != 0 {
+            let n = left.trailing_zeros() as i64;
+            left &= left - 1;
+            keys.push(KeySet::cell_in_block(b, n));
         }
-        actions_of(h, r, &keys)
+    }
+    let parts = in_parallel_from(h.threads(), &keys, PARALLEL_MIN / 4, |chunk| {
+        actions_of(h, r, chunk)
     });
     for part in parts {
         acts.extend(part);

@@ -10,7 +10,7 @@ use crate::geom::{
     vector_angle_deg, Point,
 };
 use crate::mesh::{Pslg, TriMesh};
-use crate::quality::validate::topology;
+use crate::quality::validate::{topology, Topology};
 
 /// A figure and the triangle where it is reached.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -161,8 +161,14 @@ fn shape_and_area(p: [Point; 3]) -> (TriangleShape, f64) {
 
 /// Quality figures of the whole mesh; `input` supplies d_min.
 pub fn metrics(mesh: &TriMesh, input: Option<&Pslg>) -> Metrics {
+    metrics_with(mesh, input, &topology(mesh))
+}
+
+/// [`metrics`] with the mesh's edge structure built already (`topology`), as the verdict
+/// shares it with the validity checks.
+pub(crate) fn metrics_with(mesh: &TriMesh, input: Option<&Pslg>, topo: &Topology) -> Metrics {
     let all: Vec<usize> = (0..mesh.triangles.len()).collect();
-    let mut m = metrics_of(mesh, &all, input);
+    let mut m = metrics_of(mesh, &all, input, topo);
     m.vertices = mesh.vertices.len();
     m
 }
@@ -181,7 +187,7 @@ fn keep_max(slot: &mut Option<Worst>, value: f64, triangle: usize) {
 
 /// Figures over the triangles `subset` (indices into the mesh, ascending). Interior edges
 /// count only when both their triangles are in the subset.
-fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics {
+fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>, topo: &Topology) -> Metrics {
     let n = mesh.vertices.len();
     let in_range = |t: usize| mesh.triangles[t].iter().all(|&v| (v as usize) < n);
     let mut member = vec![false; mesh.triangles.len()];
@@ -241,7 +247,7 @@ fn metrics_of(mesh: &TriMesh, subset: &[usize], input: Option<&Pslg>) -> Metrics
             .copied()
             .find(|&w| w != u && w != v)
     };
-    for (u, v, t1, t2) in topology(mesh).interior {
+    for &(u, v, t1, t2) in &topo.interior {
         if !member[t1] || !member[t2] {
             continue;
         }
@@ -357,6 +363,16 @@ pub struct SplitMetrics {
 /// exactly) or within distance `band` of one, and the rest, and gives the figures of each.
 /// Worst-triangle indices refer to the whole mesh. Without segments every triangle is interior.
 pub fn metrics_split(mesh: &TriMesh, input: &Pslg, band: f64) -> SplitMetrics {
+    metrics_split_with(mesh, input, band, &topology(mesh))
+}
+
+/// [`metrics_split`] with the mesh's edge structure built already (`topology`).
+pub(crate) fn metrics_split_with(
+    mesh: &TriMesh,
+    input: &Pslg,
+    band: f64,
+    topo: &Topology,
+) -> SplitMetrics {
     let near_triangles = near_segment_triangles(mesh, input, band.max(0.0));
     let mut is_near = vec![false; mesh.triangles.len()];
     for &t in &near_triangles {
@@ -365,8 +381,8 @@ pub fn metrics_split(mesh: &TriMesh, input: &Pslg, band: f64) -> SplitMetrics {
     let rest: Vec<usize> = (0..mesh.triangles.len()).filter(|&t| !is_near[t]).collect();
     SplitMetrics {
         band,
-        near: metrics_of(mesh, &near_triangles, Some(input)),
-        interior: metrics_of(mesh, &rest, Some(input)),
+        near: metrics_of(mesh, &near_triangles, Some(input), topo),
+        interior: metrics_of(mesh, &rest, Some(input), topo),
         near_triangles,
     }
 }

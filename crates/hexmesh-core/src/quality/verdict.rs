@@ -8,9 +8,11 @@ use crate::geom::Point;
 use crate::mesh::{Pslg, TriMesh};
 use crate::quality::bounds::Bounds;
 use crate::quality::descent::descent;
-use crate::quality::metrics::{metrics, metrics_split, triangle_shape, Metrics, SplitMetrics};
+use crate::quality::metrics::{
+    metrics_split_with, metrics_with, triangle_shape, Metrics, SplitMetrics,
+};
 use crate::quality::rounding::{self, angle_fit, angle_uses, fit_of, Fit, Use, ANGLE_FLOOR_DEG};
-use crate::quality::validate::{validate, Numbering, ValidateOptions, Violation};
+use crate::quality::validate::{topology, validate_with, Numbering, ValidateOptions, Violation};
 
 /// The outcome of one check.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -122,11 +124,45 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         single_component: input.is_some_and(|i| !i.has_segments()),
         conforming: bounds.is_some_and(|b| b.conforming),
     };
-    let violations = validate(mesh, input, &options);
-    let all = metrics(mesh, input);
-    let split = input
-        .filter(|i| i.has_segments())
-        .map(|i| metrics_split(mesh, i, crate::quality::metrics::on_segment_tolerance(i)));
+    // The edge structure, which the validity checks and the figures both read: built once.
+    let topo = topology(mesh);
+    let split = input.filter(|i| i.has_segments()).map(|i| {
+        metrics_split_with(
+            mesh,
+            i,
+            crate::quality::metrics::on_segment_tolerance(i),
+            &topo,
+        )
+    });
+    // The triangles the shape bounds cover: away from the segments when the bounds say so
+    // (out-of-range corners are validate's business).
+    let interior_only = bounds.is_some_and(|b| b.interior_only_on_segments) && split.is_some();
+    let mut part = vec![true; mesh.triangles.len()];
+    if let (Some(s), true) = (&split, interior_only) {
+        for &t in &s.near_triangles {
+            part[t] = false;
+        }
+    }
+    // Validity, the figures and the rounding fits are independent passes over the mesh: they
+    // run side by side, each whole on one thread, so the verdict does not depend on the
+    // machine (at plane-100k, hex's 11.7 M triangles, they took 5, 5 and 7 s one after the
+    // other).
+    let (violations, all, fits) = std::thread::scope(|scope| {
+        let violations = scope.spawn(|| validate_with(mesh, input, &options, &topo));
+        let fits = bounds.map(|b| {
+            let part = &part;
+            (
+                scope.spawn(move || angle_fits(mesh, input, b, part)),
+                scope.spawn(move || size_fits(mesh, input, b, part)),
+            )
+        });
+        let all = metrics_with(mesh, input, &topo);
+        let fits = fits.map(|(angles, sizes)| ShapeFits {
+            angles: join(angles),
+            sizes: join(sizes),
+        });
+        (join(violations), all, fits)
+    });
 
     let mut checks = vec![Check {
         what: "validity violations".to_string(),
@@ -142,39 +178,18 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         rounding: None,
         note: None,
     }];
-    if let Some(b) = bounds {
-        let interior_only = b.interior_only_on_segments && split.is_some();
+    if let (Some(b), Some(fits)) = (bounds, fits) {
         let (m, note) = match (&split, interior_only) {
             (Some(s), true) => (&s.interior, Some("away from segments".to_string())),
             _ => (&all, None),
-        };
-        // The triangles the shape bounds cover, with their corners (out-of-range corners are
-        // validate's business).
-        let mut part = vec![true; mesh.triangles.len()];
-        if let (Some(s), true) = (&split, interior_only) {
-            for &t in &s.near_triangles {
-                part[t] = false;
-            }
-        }
-        let n = mesh.vertices.len();
-        let covered = || {
-            (0..mesh.triangles.len())
-                .filter(|&t| part[t] && mesh.triangles[t].iter().all(|&v| (v as usize) < n))
-                .map(|t| (t, mesh.corners(t)))
         };
         // A figure with its limit, in the part of the mesh the shape bounds cover (`fit_check`).
         let mut bound = |what: &str, value: Option<f64>, ge: bool, limit: f64, fit: Option<Fit>| {
             checks.push(fit_check(mesh, what, (value, ge, limit), fit, note.clone()));
         };
         let mut exempt_corners = 0usize;
-        if let Some(limit) = b.min_angle {
-            // Input corners sharper than the bound, taken whole, are the input's, not the
-            // mesher's (`quality::corners`): their angles are left out, and counted.
-            let corners = input
-                .filter(|i| b.whole_sharp_corners && i.has_segments())
-                .map(super::corners::InputCorners::new);
-            let (fit, smallest, exempt) = min_angle_fit(covered(), limit, corners.as_ref());
-            let value = if corners.is_some() {
+        if let (Some(limit), Some((fit, smallest, exempt))) = (b.min_angle, fits.angles.min) {
+            let value = if fits.angles.whole_corners {
                 smallest
             } else {
                 m.min_angle.map(|w| w.value)
@@ -182,8 +197,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
             bound("min angle (deg)", value, true, limit, fit);
             exempt_corners = exempt;
         }
-        if let Some(limit) = b.max_angle {
-            let fit = angle_fit(covered(), 0.0, limit);
+        if let (Some(limit), Some(fit)) = (b.max_angle, fits.angles.max) {
             bound(
                 "max angle (deg)",
                 m.max_angle.map(|w| w.value),
@@ -192,18 +206,7 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                 fit,
             );
         }
-        if let Some(limit) = b.max_radius_ratio {
-            let fit = fit_of(covered().map(|(t, c)| {
-                let shape = triangle_shape(c);
-                let allowance =
-                    rounding::radius_ratio_allowance(c, shape.angles, shape.radius_ratio);
-                Use {
-                    used: (shape.radius_ratio - limit).max(0.0),
-                    allowance,
-                    value: shape.radius_ratio,
-                    triangle: t,
-                }
-            }));
+        if let (Some(limit), Some(fit)) = (b.max_radius_ratio, fits.sizes.radius_ratio) {
             bound(
                 "radius ratio R/(2r)",
                 m.radius_ratio_max.map(|w| w.value),
@@ -232,18 +235,8 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
                     "the input's regional area limits set the edge lengths",
                 )),
                 (Some(s), Some(d)) if d > 0.0 => {
-                    let fit = fit_of(covered().flat_map(|(t, c)| {
-                        (0..3).map(move |e| {
-                            let (p, q) = (c[e], c[(e + 1) % 3]);
-                            let ratio = crate::geom::dist_scaled(p, q) / d;
-                            Use {
-                                used: (limit - ratio).max(0.0),
-                                allowance: rounding::edge_allowance(p, q) / d,
-                                value: ratio,
-                                triangle: t,
-                            }
-                        })
-                    }));
+                    // `size_fits` measured the edges against the same d_min.
+                    let fit = fits.sizes.edge.flatten();
                     bound("shortest edge / d_min", Some(s.value / d), true, limit, fit);
                 }
                 (None, _) => bound("shortest edge / d_min", None, true, limit, None),
@@ -298,6 +291,104 @@ pub fn verdict(mesh: &TriMesh, input: Option<&Pslg>, bounds: Option<&Bounds>) ->
         split,
         numbering: Numbering::default(),
     }
+}
+
+/// What a scoped thread returned; its panic goes on in the caller.
+fn join<T>(handle: std::thread::ScopedJoinHandle<'_, T>) -> T {
+    match handle.join() {
+        Ok(r) => r,
+        Err(panic) => std::panic::resume_unwind(panic),
+    }
+}
+
+/// The rounding fits of a verdict's shape bounds (`fit_check`), computed beside its other
+/// passes.
+struct ShapeFits {
+    angles: AngleFits,
+    sizes: SizeFits,
+}
+
+/// The fits of the angle bounds: each `None` when the bounds have no such limit.
+struct AngleFits {
+    /// The min-angle fit, the smallest angle kept and how many angles at whole sharp input
+    /// corners were left out (`min_angle_fit`).
+    min: Option<(Option<Fit>, Option<f64>, usize)>,
+    /// Whether the min-angle fit left out the whole sharp corners (the bound says so and the
+    /// input has segments): its smallest angle is then the figure reported.
+    whole_corners: bool,
+    max: Option<Option<Fit>>,
+}
+
+/// The fits of the radius ratio and of the shortest edge over d_min: each `None` when the
+/// bounds have no such limit (the edge's also without a positive d_min).
+struct SizeFits {
+    radius_ratio: Option<Option<Fit>>,
+    edge: Option<Option<Fit>>,
+}
+
+/// The triangles `part` marks whose corners are all vertices of `mesh`, with their corners.
+fn covered<'a>(
+    mesh: &'a TriMesh,
+    part: &'a [bool],
+) -> impl Iterator<Item = (usize, [Point; 3])> + 'a {
+    let n = mesh.vertices.len();
+    (0..mesh.triangles.len())
+        .filter(move |&t| part[t] && mesh.triangles[t].iter().all(|&v| (v as usize) < n))
+        .map(move |t| (t, mesh.corners(t)))
+}
+
+/// The fits of the min- and max-angle bounds of `b` over the triangles `part` marks.
+fn angle_fits(mesh: &TriMesh, input: Option<&Pslg>, b: &Bounds, part: &[bool]) -> AngleFits {
+    // Input corners sharper than the bound, taken whole, are the input's, not the mesher's
+    // (`quality::corners`): their angles are left out, and counted.
+    let corners = input
+        .filter(|i| b.whole_sharp_corners && i.has_segments())
+        .map(super::corners::InputCorners::new);
+    AngleFits {
+        min: b
+            .min_angle
+            .map(|limit| min_angle_fit(covered(mesh, part), limit, corners.as_ref())),
+        whole_corners: corners.is_some(),
+        max: b
+            .max_angle
+            .map(|limit| angle_fit(covered(mesh, part), 0.0, limit)),
+    }
+}
+
+/// The fits of the radius-ratio bound of `b` and of its shortest edge over d_min (the
+/// closest input points or features, as `metrics` takes it) over the triangles `part` marks.
+fn size_fits(mesh: &TriMesh, input: Option<&Pslg>, b: &Bounds, part: &[bool]) -> SizeFits {
+    let radius_ratio = b.max_radius_ratio.map(|limit| {
+        fit_of(covered(mesh, part).map(|(t, c)| {
+            let shape = triangle_shape(c);
+            let allowance = rounding::radius_ratio_allowance(c, shape.angles, shape.radius_ratio);
+            Use {
+                used: (shape.radius_ratio - limit).max(0.0),
+                allowance,
+                value: shape.radius_ratio,
+                triangle: t,
+            }
+        }))
+    });
+    let d_min = input
+        .and_then(crate::quality::feature_gap)
+        .map(|c| c.distance)
+        .filter(|&d| d > 0.0);
+    let edge = b.min_edge_over_dmin.zip(d_min).map(|(limit, d)| {
+        fit_of(covered(mesh, part).flat_map(|(t, c)| {
+            (0..3).map(move |e| {
+                let (p, q) = (c[e], c[(e + 1) % 3]);
+                let ratio = crate::geom::dist_scaled(p, q) / d;
+                Use {
+                    used: (limit - ratio).max(0.0),
+                    allowance: rounding::edge_allowance(p, q) / d,
+                    value: ratio,
+                    triangle: t,
+                }
+            })
+        }))
+    });
+    SizeFits { radius_ratio, edge }
 }
 
 /// The smallest angle of the triangles `tris` against `limit` with the rounding allowance,

@@ -74,6 +74,17 @@ pub struct ValidateOptions {
 /// coordinates, triangles, edges, duplicates, unreferenced vertices, boundary, input; by
 /// index within each. An empty result means the mesh is valid.
 pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) -> Vec<Violation> {
+    validate_with(mesh, input, opts, &topology(mesh))
+}
+
+/// [`validate`] with the mesh's edge structure built already (`topology`), as the verdict
+/// shares it with the figures (`metrics_with`).
+pub(crate) fn validate_with(
+    mesh: &TriMesh,
+    input: Option<&Pslg>,
+    opts: &ValidateOptions,
+    topo: &Topology,
+) -> Vec<Violation> {
     let mut out = Vec::new();
     let verts = &mesh.vertices;
     let n = verts.len();
@@ -90,7 +101,6 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
         }
     }
 
-    let topo = topology(mesh);
     // Triangles whose geometry can be trusted: usable and with finite corners.
     let mut geometric = topo.usable.clone();
     let mut referenced = vec![false; n];
@@ -163,17 +173,17 @@ pub fn validate(mesh: &TriMesh, input: Option<&Pslg>, opts: &ValidateOptions) ->
         .copied()
         .filter(|e| geometric[e.triangle])
         .collect();
-    let loops = boundary_loops(mesh, &topo, &boundary, &mut out);
+    let loops = boundary_loops(mesh, topo, &boundary, &mut out);
     boundary_crossings(verts, &boundary, &mut out);
     overlaps(verts, &boundary, &loops, &mut out);
-    folds(mesh, &topo, &geometric, &mut out);
+    folds(mesh, topo, &geometric, &mut out);
     area_balance(mesh, &geometric, &boundary, &mut out);
     if opts.single_component {
         one_disc(&boundary, &loops, &mut out);
     }
 
     if let Some(input) = input {
-        input_conformity(mesh, &topo, &boundary, input, opts.conforming, &mut out);
+        input_conformity(mesh, topo, &boundary, input, opts.conforming, &mut out);
         holes_covered(mesh, &geometric, input, &mut out);
     }
     out

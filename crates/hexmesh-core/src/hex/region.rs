@@ -11,7 +11,7 @@
 //! answers whether a lattice triangle of the dual recursion (`dual`) or a leaf may be
 //! affected; everything else is known not to have changed.
 
-use std::rc::Rc;
+use std::sync::Arc;
 
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyBytes};
 use crate::hex::subdivision::{Cell, Hierarchy};
@@ -28,7 +28,7 @@ pub struct Region {
     /// The lattice distance of each cell within the widest reach built to the nearest anchor
     /// of its level; shared by the narrower views of `within`. Kept by 8 × 8 blocks: the
     /// search below walks the lattice, and the checks ask about cells in the dual's order.
-    dist: Rc<KeyBytes>,
+    dist: Arc<KeyBytes>,
     /// The cells within this distance belong to the region.
     reach: u8,
     /// Two levels below the finest changed cell, plus one: below it nothing changed.
@@ -86,7 +86,7 @@ impl Region {
             }
         }
         Region {
-            dist: Rc::new(dist),
+            dist: Arc::new(dist),
             reach,
             depth,
         }
@@ -95,7 +95,7 @@ impl Region {
     /// The same region with a smaller reach (at most this one's), sharing its distances.
     pub fn within(&self, reach: i64) -> Region {
         Region {
-            dist: Rc::clone(&self.dist),
+            dist: Arc::clone(&self.dist),
             reach: reach.clamp(0, self.reach as i64) as u8,
             depth: self.depth,
         }

@@ -6,7 +6,7 @@ use crate::geom::Point;
 use crate::hex::classify::{classify, fin_class, fin_mask, Class, Rings, Role};
 use crate::hex::lattice::{FxHashMap, Key};
 use crate::hex::mc3::{self, Chain, Patch};
-use crate::hex::parallel::in_parallel;
+use crate::hex::parallel::{each_in_parallel, in_parallel};
 use crate::hex::subdivision::Hierarchy;
 
 /// The relocated centres of Sec. 5.4, keyed by `Key::canonical`, and the dual rebuilt around
@@ -94,12 +94,22 @@ pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Pa
 /// The triangles `mc3::build` makes for each of `chains` in turn, given to `emit` in order
 /// (`chain_relocations`): `mc3::build` only adds to the table and the patch it is given, so a
 /// chain's triangles do not depend on the chains before it.
+///
+/// Runs of chains are built over the hierarchy's threads (each run with a table of its own),
+/// a few runs a thread at a time, and their triangles given in order.
 pub fn chain_triangles(h: &Hierarchy, r: &Rings, chains: &[Chain], emit: &mut dyn FnMut([Key; 3])) {
-    let mut scratch = FxHashMap::default();
-    let mut patch = Patch::default();
-    for &chain in chains {
-        mc3::build(h, r, chain, &mut scratch, &mut patch);
-        for t in patch.triangles.drain(..) {
+    const RUN: usize = 2048;
+    let runs: Vec<&[Chain]> = chains.chunks(RUN).collect();
+    for batch in runs.chunks(4 * h.threads()) {
+        let parts = each_in_parallel(h.threads(), batch, |run| {
+            let mut scratch = FxHashMap::default();
+            let mut patch = Patch::default();
+            for &chain in *run {
+                mc3::build(h, r, chain, &mut scratch, &mut patch);
+            }
+            patch.triangles
+        });
+        for t in parts.into_iter().flatten() {
             emit(t);
         }
     }

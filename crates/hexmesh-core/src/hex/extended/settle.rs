@@ -9,6 +9,7 @@ use crate::geom::angle_deg;
 use crate::geom::{orient2d, Point};
 use crate::hex::classify::Rings;
 use crate::hex::lattice::{FxHashMap, Key, KeyBytes};
+use crate::hex::parallel::{ranges_in_parallel, PARALLEL_MIN};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 use crate::quality::HEX;
@@ -89,7 +90,7 @@ pub(super) fn settle_contested(
     keys: &[Key],
     l_min: f64,
     pass: SettlePass<'_>,
-    movable: &dyn Fn(Key) -> bool,
+    movable: &(dyn Fn(Key) -> bool + Sync),
 ) -> Moves {
     let SettlePass {
         rings: r,
@@ -100,15 +101,22 @@ pub(super) fn settle_contested(
         return Moves::default();
     }
     let slack = HEX.self_check_slack;
-    // The vertices of contested cells, with their lattice centre and radius, sorted by key.
-    let mut cells: Vec<(Key, usize, Point, f64)> = Vec::new();
-    for (v, k) in keys.iter().enumerate() {
-        if let Some(leaf) = wanted.cell(h, r, *k, with_neighbours) {
-            if v >= h.points.len() && movable(*k) {
-                cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
+    // The vertices of contested cells, with their lattice centre and radius, sorted by key;
+    // looked up over the hierarchy's threads in ranges of vertices, concatenated in order.
+    let mut cells: Vec<(Key, usize, Point, f64)> =
+        ranges_in_parallel(h.threads(), keys.len(), PARALLEL_MIN, |range| {
+            let mut cells = Vec::new();
+            let from = range.start.max(h.points.len());
+            for (v, &k) in keys[..range.end].iter().enumerate().skip(from) {
+                if let Some(leaf) = wanted.cell(h, r, k, with_neighbours) {
+                    if movable(k) {
+                        cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
+                    }
+                }
             }
-        }
-    }
+            cells
+        })
+        .concat();
     if cells.is_empty() {
         return Moves::default();
     }

@@ -13,6 +13,10 @@
 //! `cargo bench --bench hex_vs` (about 20 minutes on 2 cores, most of it `hex` on plane-100k:
 //! ten samples of one run each); `cargo bench --bench hex_vs -- plane-10k` for the small set
 //! alone, `-- /1t` for the single-thread runs alone.
+//!
+//! `cargo test --all-targets` (`make test`) runs each bench once to see that it works; there the
+//! group takes plane-10k alone, since plane-100k would add two minutes of `hex` to the tests
+//! without testing anything plane-10k does not.
 
 use std::hint::black_box;
 use std::num::NonZeroUsize;
@@ -40,7 +44,14 @@ fn hex_vs(c: &mut Criterion) {
         .sample_size(10)
         .warm_up_time(Duration::from_millis(1))
         .measurement_time(Duration::from_secs(1));
-    for name in DATASETS {
+    // cargo passes `--bench` to a bench target under `cargo bench` and not under `cargo test`.
+    let benching = std::env::args().any(|a| a == "--bench");
+    let datasets = if benching {
+        &DATASETS[..]
+    } else {
+        &DATASETS[..1]
+    };
+    for &name in datasets {
         let input = datasets::by_name(name).expect("a scaling dataset");
         for mesher_name in MESHERS {
             let mesher = registry::mesher(mesher_name).expect("a registered mesher");

@@ -124,7 +124,7 @@ pub const FAMILIES: [&str; 10] = [
 ];
 
 /// Runs `cases` random cases through the mesher `mesher` (any registered name, or
-/// `hex-simple`), seeded by `seed`; `progress` is called after each case with the number done.
+/// `hex-simple`, or `hex-tiled`: `hex` with tiles of 16 points), seeded by `seed`; `progress` is called after each case with the number done.
 /// The input of each failing case is written into `out` (`write_failure`) when it is given;
 /// without it nothing is written and the failures are only reported.
 pub fn fuzz_campaign(
@@ -213,6 +213,9 @@ pub fn fuzz_campaign_sized(
     let m: Box<dyn Mesher> = match mesher {
         "hex-simple" => Box::new(crate::hex::HexSimple),
         "hex" => Box::new(crate::hex::extended::Hex),
+        // `hex` with tiles of 16 points, so that these small sets are meshed in tiles as
+        // large inputs are (`HexInTiles`).
+        "hex-tiled" => Box::new(crate::hex::extended::HexInTiles(16)),
         other => match crate::registry::mesher(other) {
             Ok(m) => m,
             Err(e) => {

@@ -19,3 +19,19 @@ fn hex_simple_survives_three_thousand_fuzz_cases() {
         summary.cases - summary.refused
     );
 }
+
+#[test]
+fn hex_in_tiles_of_sixteen_points_survives_five_hundred_fuzz_cases() {
+    // `hex` tiles inputs of more than 2,048 points; `hex-tiled` tiles these sets of up to 80
+    // points by 16, so that the join of the tiles (`hex::extended::tiles`) meets the
+    // campaign's families, each checked against `hex`'s promise.
+    let summary = fuzz_campaign("hex-tiled", 500, 20261123, None, |_| {});
+    eprintln!("{summary:?}");
+    assert_eq!(summary.failures, 0, "{:?}", summary.first_failure);
+    assert!(summary.worst_min_angle >= 43.8979 - 0.01);
+    assert!(summary.worst_max_angle <= 90.0 + 0.01);
+    assert_eq!(
+        summary.rounding_used.iter().sum::<u64>(),
+        summary.cases - summary.refused
+    );
+}

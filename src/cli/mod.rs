@@ -759,7 +759,7 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
     if args.domains {
         return fuzz_domains(args);
     }
-    if !matches!(args.mesher.as_str(), "hex" | "hex-simple") {
+    if !matches!(args.mesher.as_str(), "hex" | "hex-simple" | "hex-tiled") {
         crate::registry::mesher(&args.mesher)?;
     }
     if args.mesher == "triangle" {

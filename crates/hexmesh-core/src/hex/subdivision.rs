@@ -129,6 +129,49 @@ impl Hierarchy {
         }
     }
 
+    /// A hierarchy for a part of the points (a tile, `extended::tiles`): the root alone over
+    /// `points`, with this one's lattice, budget and its clock (the time budget counts from
+    /// the whole run's start), rounding allowance and size level, on one thread.
+    pub(crate) fn part(&self, points: Vec<Point>) -> Hierarchy {
+        let mut h = Hierarchy::new(self.lattice, points, self.budget);
+        h.start = self.start;
+        h.max_rounding = self.max_rounding;
+        h.size_level = self.size_level;
+        h.threads = 1;
+        h
+    }
+
+    /// The subdivided hexagons, given up (a part's result, `part`).
+    pub(crate) fn into_subdivided(self) -> KeySet {
+        self.subdivided
+    }
+
+    /// Adds the subdivided hexagons of other hierarchies over the same lattice (parts of the
+    /// points, `part`) to this one, unrefined or not, and gives each point the leaf the
+    /// descent from the root finds for it. Each set given is a state some run of
+    /// subdivisions reached, and a union of such states is one too: a subdivided hexagon's
+    /// ancestors and the parents its neighbours need to be full (the balancing of Sec. 3.3)
+    /// are in its own set, and a subdivision elsewhere makes no full cell a semi-hexagon.
+    /// The steps count the hexagons added.
+    pub(crate) fn absorb(&mut self, sets: impl IntoIterator<Item = KeySet>) {
+        for set in sets {
+            for key in set.iter() {
+                if self.subdivided.insert(key) {
+                    self.steps += 1;
+                    self.deepest = self.deepest.max(key.k + 1);
+                }
+            }
+        }
+        self.occupants.clear();
+        self.occupied = KeySet::default();
+        for i in 0..self.points.len() {
+            let leaf = self.leaf_of(self.points[i]);
+            self.occupants.entry(leaf).or_default().push(i as u32);
+            self.occupied.insert(leaf);
+        }
+        self.full_leaves = self.full_leaves_iter().count();
+    }
+
     /// True when the hexagon of `key` is subdivided, counting cells outside the root as
     /// subdivided (they never constrain anything inside).
     pub fn is_subdivided_or_outside(&self, key: Key) -> bool {
@@ -436,6 +479,11 @@ impl Hierarchy {
     /// The level every full leaf must reach to keep the size limits; 0 for none.
     pub fn size_level(&self) -> u8 {
         self.size_level
+    }
+
+    /// The budget the refinement keeps.
+    pub fn budget(&self) -> Budget {
+        self.budget
     }
 
     /// The deepest level a hexagon has reached.

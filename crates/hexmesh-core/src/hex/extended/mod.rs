@@ -91,7 +91,9 @@
 //! - `settle`: the local searches that place ring cells (`settle_contested`, `polish_rings`);
 //! - `check`: the self-check (`breaks_bounds`, `offending_leaves`, `settle_rounding`);
 //! - `splice`: the whole dual spliced after local repairs (not in the paper);
-//! - `repair`: the loop of rules, checks and repairs (`extend_and_verify`).
+//! - `repair`: the loop of rules, checks and repairs (`extend_and_verify`);
+//! - `tiles`: the refinement of large inputs started tile by tile over the threads (not in
+//!   the paper).
 
 pub(crate) mod check;
 pub(crate) mod relocate;
@@ -100,6 +102,7 @@ mod rings;
 pub(crate) mod rules;
 mod settle;
 mod splice;
+mod tiles;
 mod undo;
 
 use std::time::Instant;
@@ -239,30 +242,74 @@ impl Mesher for Hex {
                 elapsed: start.elapsed(),
             });
         }
-        let mut out = mesh_extended(input, params)?;
-        if let Some(t) = dual::first_inverted(&out.mesh) {
-            return Err(Error::mesher(
-                self.name(),
-                format!("internal error: dual triangle {t} is not counter-clockwise"),
-            ));
-        }
-        if out.stop.is_none() {
-            settle_rounding(
-                &mut out.mesh,
-                &input.points,
-                out.stats.rounding_pairs,
-                params.max_rounding_deg(),
-            )?;
-            size::check(&out.mesh, limits, self.name(), |_| true)?;
-        }
-        Ok(MeshRun {
-            mesh: out.mesh,
-            complete: out.stop.is_none(),
-            stop_reason: out.stop,
-            steps: out.hierarchy.steps,
-            elapsed: start.elapsed(),
-        })
+        mesh_points(input, params, start, tiles::TILE_POINTS)
     }
+}
+
+/// `hex` with tiles of at most `per_tile` points on average (`tiles`; `hex` itself takes
+/// `TILE_POINTS`): the fuzz campaign's `hex-tiled` (16 points a tile), which meshes its small
+/// point sets in tiles as `hex` meshes large inputs, so that the tiles' join is fuzzed too.
+/// Its name and promise are `hex`'s.
+#[derive(Debug, Clone, Copy)]
+pub struct HexInTiles(pub usize);
+
+impl Mesher for HexInTiles {
+    fn name(&self) -> &'static str {
+        Hex.name()
+    }
+
+    fn version(&self) -> String {
+        Hex.version()
+    }
+
+    fn settings(&self, params: &Params) -> String {
+        format!("{}; tiles of {} points", Hex.settings(params), self.0)
+    }
+
+    /// Domains go to `hex` as they are (`pslg`), which does not tile.
+    fn supports_segments(&self) -> bool {
+        Hex.supports_segments()
+    }
+
+    fn promise(&self, params: &Params) -> Bounds {
+        Hex.promise(params)
+    }
+
+    fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
+        params.refuse_switches(self.name())?;
+        if input.has_segments() {
+            return Hex.mesh(input, params);
+        }
+        mesh_points(input, params, Instant::now(), self.0)
+    }
+}
+
+/// `hex` on a point set, with tiles of at most `per_tile` points on average.
+fn mesh_points(input: &Pslg, params: &Params, start: Instant, per_tile: usize) -> Result<MeshRun> {
+    let limits = size::limits(input, params)?;
+    let mut out = mesh_extended_in_tiles(input, params, per_tile)?;
+    if let Some(t) = dual::first_inverted(&out.mesh) {
+        return Err(Error::mesher(
+            Hex.name(),
+            format!("internal error: dual triangle {t} is not counter-clockwise"),
+        ));
+    }
+    if out.stop.is_none() {
+        settle_rounding(
+            &mut out.mesh,
+            &input.points,
+            out.stats.rounding_pairs,
+            params.max_rounding_deg(),
+        )?;
+        size::check(&out.mesh, limits, Hex.name(), |_| true)?;
+    }
+    Ok(MeshRun {
+        mesh: out.mesh,
+        complete: out.stop.is_none(),
+        stop_reason: out.stop,
+        steps: out.hierarchy.steps,
+        elapsed: start.elapsed(),
+    })
 }
 
 /// The result of `mesh_extended`.
@@ -291,10 +338,22 @@ impl ExtendedRun {
 
 /// Runs the extended refinement and builds the relocated dual.
 pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
+    mesh_extended_in_tiles(input, params, tiles::TILE_POINTS)
+}
+
+/// `mesh_extended` with tiles of at most `per_tile` points on average (`tiles`); for tests
+/// of the tiles on small inputs.
+#[doc(hidden)]
+pub fn mesh_extended_in_tiles(
+    input: &Pslg,
+    params: &Params,
+    per_tile: usize,
+) -> Result<ExtendedRun> {
     let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
     let mut rings = RingState::default();
-    let outcome = refine_and_verify(&mut h, &mut stats, &mut rings);
+    let outcome = tiles::refine_tiled(&mut h, &mut stats, per_tile)
+        .and_then(|_| refine_and_verify(&mut h, &mut stats, &mut rings));
     match outcome {
         Ok(mesh) => Ok(ExtendedRun {
             hierarchy: h,

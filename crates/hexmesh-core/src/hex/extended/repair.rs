@@ -45,6 +45,20 @@ pub(crate) fn extend_and_verify(
     Repair::new(h, stats, state, candidates, changed).run()
 }
 
+/// The extended rules on `candidates` to a fixed point and nothing else: no coarsening, no
+/// check (a tile's part of the run, `tiles`). The subdivisions the rules made are counted in
+/// `stats`.
+pub(crate) fn rules_to_fixed_point(
+    h: &mut Hierarchy,
+    stats: &mut ExtendedStats,
+    candidates: KeySet,
+) -> Result<(), Stop> {
+    let mut state = RingState::default();
+    let mut repair = Repair::new(h, stats, &mut state, candidates, None);
+    repair.coarsened = true;
+    repair.apply_rules()
+}
+
 /// What a local check of `extend_and_verify` covers.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Scope {

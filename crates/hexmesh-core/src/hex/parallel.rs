@@ -53,19 +53,16 @@ pub(crate) fn ranges_in_parallel<R: Send>(
     min: usize,
     f: impl Fn(std::ops::Range<usize>) -> R + Sync,
 ) -> Vec<R> {
-    let starts: Vec<usize> = if threads < 2 || n < min.max(2) {
-        vec![0]
+    let ranges: Vec<std::ops::Range<usize>> = if threads < 2 || n < min.max(2) {
+        vec![0..n]
     } else {
         let size = n.div_ceil(threads);
-        (0..n).step_by(size).collect()
+        (0..n).step_by(size).map(|s| s..(s + size).min(n)).collect()
     };
-    in_parallel_from(threads, &starts, 2, |chunk| {
-        let from = chunk[0];
-        let to = starts
-            .get(starts.partition_point(|&s| s <= chunk[chunk.len() - 1]))
-            .copied()
-            .unwrap_or(n);
-        f(from..to)
+    // One range a chunk: `in_parallel_from` gives each thread one.
+    in_parallel_from(threads, &ranges, 2, |chunk| {
+        debug_assert_eq!(chunk.len(), 1);
+        f(chunk[0].clone())
     })
 }
 

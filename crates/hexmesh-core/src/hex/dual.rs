@@ -177,6 +177,9 @@ fn extract_all_from(
 ) -> (TriMesh, Vec<Key>) {
     let mut b = Builder::new(h, placement, moved, &patch.dropped, true);
     b.relocate = relocate;
+    // `later`'s triangles, when they were built to find the centres they use (once is
+    // enough: they are emitted from this list in the order `later` gave them).
+    let mut later_triangles: Option<Vec<[Key; 3]>> = None;
     if h.full_leaves < min_leaves {
         descend(h, root_triangles(h), &|_| true, &mut |tri| b.emit(tri));
     } else {
@@ -185,15 +188,26 @@ fn extract_all_from(
         let mut wanted: FxHashSet<Key> = FxHashSet::default();
         wanted.extend(patch.triangles.iter().flatten().map(|c| c.canonical()));
         if let Some(later) = later {
-            later(&mut |tri| wanted.extend(tri.map(|c| c.canonical())));
+            let mut triangles = Vec::new();
+            later(&mut |tri| {
+                wanted.extend(tri.map(|c| c.canonical()));
+                triangles.push(tri);
+            });
+            later_triangles = Some(triangles);
         }
         b = emit_split(h, b, &wanted);
     }
     for tri in &patch.triangles {
         b.emit_patch(*tri);
     }
-    if let Some(later) = later {
-        later(&mut |tri| b.emit_patch(tri));
+    match (later_triangles, later) {
+        (Some(triangles), _) => {
+            for tri in triangles {
+                b.emit_patch(tri);
+            }
+        }
+        (None, Some(later)) => later(&mut |tri| b.emit_patch(tri)),
+        (None, None) => {}
     }
     b.finish()
 }

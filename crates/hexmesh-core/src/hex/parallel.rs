@@ -54,7 +54,8 @@ pub(crate) fn ranges_in_parallel<R: Send>(
     f: impl Fn(std::ops::Range<usize>) -> R + Sync,
 ) -> Vec<R> {
     let ranges: Vec<std::ops::Range<usize>> = if threads < 2 || n < min.max(2) {
-        vec![0..n]
+        // One range, the whole of `0..n`.
+        std::iter::once(0..n).collect()
     } else {
         let size = n.div_ceil(threads);
         (0..n).step_by(size).map(|s| s..(s + size).min(n)).collect()

@@ -341,14 +341,9 @@ pub fn mesh_extended(input: &Pslg, params: &Params) -> Result<ExtendedRun> {
     mesh_extended_in_tiles(input, params, tiles::TILE_POINTS)
 }
 
-/// `mesh_extended` with tiles of at most `per_tile` points on average (`tiles`); for tests
-/// of the tiles on small inputs.
-#[doc(hidden)]
-pub fn mesh_extended_in_tiles(
-    input: &Pslg,
-    params: &Params,
-    per_tile: usize,
-) -> Result<ExtendedRun> {
+/// `mesh_extended` with tiles of at most `per_tile` points on average (`tiles`; `HexInTiles`
+/// takes small tiles).
+fn mesh_extended_in_tiles(input: &Pslg, params: &Params, per_tile: usize) -> Result<ExtendedRun> {
     let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
     let mut rings = RingState::default();

@@ -208,9 +208,9 @@ impl Mesher for Hex {
     fn mesh(&self, input: &Pslg, params: &Params) -> Result<MeshRun> {
         params.refuse_switches(self.name())?;
         let start = Instant::now();
-        let limits = size::limits(input, params)?;
         // PSLG hook (Sec. 7): segments go to src/hex/pslg.rs.
         if input.has_segments() {
+            let limits = size::limits(input, params)?;
             // The hierarchy is built on the points alone, so the regions' smallest area limit
             // travels as the maximum area.
             let sized = Params {
@@ -376,16 +376,22 @@ fn refine_and_verify(
     stats: &mut ExtendedStats,
     state: &mut RingState,
 ) -> Result<TriMesh, Stop> {
+    let candidates = refine_simple_and_sizes(h)?;
+    match extend_and_verify(h, stats, state, candidates, None)? {
+        Some(mesh) => Ok(mesh),
+        None => Ok(final_dual(h, state)),
+    }
+}
+
+/// The simple refinement and the subdivisions of the size limits, then the cells the
+/// extended rules look at first: every full leaf (the whole run's start, and a tile's).
+pub(crate) fn refine_simple_and_sizes(h: &mut Hierarchy) -> Result<KeySet, Stop> {
     refine_simple(h)?;
     size::refine(h)?;
     // The extended rules act on full leaves only, and `extended_actions` sorts what it finds,
     // so the full leaves as a block set do (not every leaf with its cell, sorted: at plane-1m
     // about 5 GB built and sorted once).
-    let candidates: KeySet = h.full_leaves_iter().collect();
-    match extend_and_verify(h, stats, state, candidates, None)? {
-        Some(mesh) => Ok(mesh),
-        None => Ok(final_dual(h, state)),
-    }
+    Ok(h.full_leaves_iter().collect())
 }
 
 /// The relocated dual of the whole subdivision, with the ring decisions of `state`

@@ -25,12 +25,10 @@
 //!   names the points in the input's numbering (a tile numbers its points apart).
 
 use super::repair::rules_to_fixed_point;
-use super::ExtendedStats;
+use super::{refine_simple_and_sizes, ExtendedStats};
 use crate::geom::Point;
-use crate::hex::lattice::{KeySet, Lattice};
+use crate::hex::lattice::Lattice;
 use crate::hex::parallel::each_in_parallel;
-use crate::hex::refine::refine_simple;
-use crate::hex::size;
 use crate::hex::subdivision::{Hierarchy, Stop};
 
 /// The mean number of points a tile is chosen to hold at most: enough that the band along a
@@ -122,22 +120,21 @@ pub(crate) fn refine_tiled(
 /// One tile's refinement: the simple rules, the size limits, the extended rules to their
 /// fixed point.
 fn refine_part(h: &mut Hierarchy, stats: &mut ExtendedStats) -> Result<(), Stop> {
-    refine_simple(h)?;
-    size::refine(h)?;
-    let candidates: KeySet = h.full_leaves_iter().collect();
+    let candidates = refine_simple_and_sizes(h)?;
     rules_to_fixed_point(h, stats, candidates)
-}
-
-/// The level-`level` cell nearest to each point (the tile it belongs to), for tests.
-#[cfg(test)]
-fn tile_keys(lattice: &Lattice, level: u8, points: &[Point]) -> Vec<crate::hex::lattice::Key> {
-    points.iter().map(|&p| lattice.nearest(level, p)).collect()
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::geom::Hexagon;
+    use crate::hex::lattice::Key;
+    use crate::hex::refine::refine_simple;
+
+    /// The level-`level` cell nearest to each point (the tile it belongs to).
+    fn tile_keys(lattice: &Lattice, level: u8, points: &[Point]) -> Vec<Key> {
+        points.iter().map(|&p| lattice.nearest(level, p)).collect()
+    }
 
     fn grid(n: usize) -> Vec<Point> {
         (0..n * n)

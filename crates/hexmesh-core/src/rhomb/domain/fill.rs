@@ -14,7 +14,7 @@
 
 use std::collections::HashMap;
 
-use super::boxes::{box_points, score, Vertex};
+use super::boxes::{box_points, score, Floor, Vertex};
 use super::cut::{Cut, Segments};
 use super::input::Domain;
 use super::pieces::{solve, Chain, Pieces};
@@ -141,20 +141,24 @@ pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point]) -> WedgeTable {
                 score(c, vs[b], ws[a]).unwrap_or(f64::NEG_INFINITY)
             };
             let mut cell = (tip, WedgeStep::Tip);
+            // A triangle whose smallest angle cannot beat the cell is not scored (`Floor`).
+            let mut floor = Floor::of(cell.0);
             for a0 in a.saturating_sub(SPAN)..a {
-                if best[a0][b].0 > cell.0 {
+                if best[a0][b].0 > cell.0 && floor.may_reach(vs[b], ws[a], ws[a0]) {
                     if let Some(g) = score(vs[b], ws[a], ws[a0]) {
                         if best[a0][b].0.min(g) > cell.0 {
                             cell = (best[a0][b].0.min(g), WedgeStep::W(a0));
+                            floor = Floor::of(cell.0);
                         }
                     }
                 }
             }
             for b0 in b.saturating_sub(SPAN)..b {
-                if best[a][b0].0 > cell.0 {
+                if best[a][b0].0 > cell.0 && floor.may_reach(vs[b0], vs[b], ws[a]) {
                     if let Some(g) = score(vs[b0], vs[b], ws[a]) {
                         if best[a][b0].0.min(g) > cell.0 {
                             cell = (best[a][b0].0.min(g), WedgeStep::V(b0));
+                            floor = Floor::of(cell.0);
                         }
                     }
                 }

@@ -707,6 +707,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
         },
         switches,
         threads,
+        progress: None,
     };
     // The other labels stay in the parent, which writes the mesh; the regions travel, since
     // `triangle` meshes with their area limits.

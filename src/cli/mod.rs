@@ -397,6 +397,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         },
         switches: args.triangle_switches.clone(),
         threads: thread_count(args.threads)?,
+        progress: None,
     };
     check_triangle_switches(mesher.name(), &params)?;
     let exe = crate::isolate::find_exe()?;

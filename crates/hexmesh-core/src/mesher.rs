@@ -5,6 +5,7 @@ use std::time::Duration;
 
 use crate::error::{Error, Result};
 use crate::mesh::{Pslg, TriMesh};
+use crate::progress::Progress;
 use crate::quality::Bounds;
 
 /// The largest rounding allowance, in degrees, that a mesh of ours may use before its input is
@@ -44,6 +45,9 @@ pub struct Params {
     /// `hex-simple`); `None`: as many as the machine has (`available_parallelism`). The mesh
     /// is the same bytes for every count.
     pub threads: Option<std::num::NonZeroUsize>,
+    /// Who is told what the mesher is doing while it runs (`progress`); `None`: nobody, and
+    /// the reports cost nothing. The mesh is the same bytes either way.
+    pub progress: Option<Progress>,
 }
 
 impl Params {
@@ -117,6 +121,12 @@ impl Params {
     /// These parameters letting the mesher use at most `threads` threads.
     pub fn with_threads(mut self, threads: std::num::NonZeroUsize) -> Params {
         self.threads = Some(threads);
+        self
+    }
+
+    /// These parameters telling `progress` what the mesher is doing while it runs.
+    pub fn with_progress(mut self, progress: Progress) -> Params {
+        self.progress = Some(progress);
         self
     }
 

@@ -81,6 +81,7 @@ impl IncrementalHex {
             &mut self.rings,
             candidates,
             Some(changed),
+            None,
         ) {
             let e = stop_error("hex", stop);
             self.broken = Some(format!("an earlier insertion failed: {e}"));

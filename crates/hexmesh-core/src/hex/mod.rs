@@ -83,12 +83,15 @@ impl Mesher for HexSimple {
         params.refuse_switches(self.name())?;
         let start = Instant::now();
         let mut h = new_hierarchy(input, params, "hex-simple")?;
+        let progress = params.progress.as_ref();
+        crate::progress::phase(progress, "simple refinement");
         let stop = run_simple(&mut h)?;
         let placement = if stop.is_none() {
             Placement::Relocated
         } else {
             Placement::Plain
         };
+        crate::progress::phase(progress, "dual");
         let mesh = dual::extract(&h, placement);
         if let Some(t) = dual::first_inverted(&mesh) {
             return Err(Error::mesher(
@@ -284,6 +287,32 @@ impl IncrementalHexSimple {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn hex_simple_reports_its_two_phases_and_meshes_the_same_bytes() {
+        let points = (0..300)
+            .map(|i| {
+                let i = f64::from(i);
+                [(i * 0.618_034).fract(), (i * 0.414_214).fract()]
+            })
+            .collect();
+        let input = Pslg::from_points(points);
+        let phases = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+        let progress = {
+            let phases = std::sync::Arc::clone(&phases);
+            crate::progress::Progress::new(move |e| phases.lock().unwrap().push(e.phase))
+        };
+        let observed = HexSimple
+            .mesh(&input, &Params::default().with_progress(progress))
+            .expect("meshes");
+        let unobserved = HexSimple.mesh(&input, &Params::default()).expect("meshes");
+        assert_eq!(*phases.lock().unwrap(), ["simple refinement", "dual"]);
+        let bits = |m: &TriMesh| {
+            let v = m.vertices.iter().flat_map(|p| p.map(f64::to_bits));
+            (v.collect::<Vec<u64>>(), m.triangles.clone())
+        };
+        assert_eq!(bits(&observed.mesh), bits(&unobserved.mesh));
+    }
 
     /// A right triangle at `offset` whose angle at the third corner is 30° less `short`
     /// degrees.

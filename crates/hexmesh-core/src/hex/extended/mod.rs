@@ -115,6 +115,7 @@ use crate::hex::size;
 use crate::hex::subdivision::{Hierarchy, Stop};
 use crate::mesh::{Pslg, TriMesh};
 use crate::mesher::{MeshRun, Mesher, Params, StopReason};
+use crate::progress::{self, Progress};
 use crate::quality::{Bounds, HEX};
 
 pub use check::{delaunay_violations, settle_rounding};
@@ -347,8 +348,9 @@ fn mesh_extended_in_tiles(input: &Pslg, params: &Params, per_tile: usize) -> Res
     let mut h = super::new_hierarchy(input, params, "hex")?;
     let mut stats = ExtendedStats::default();
     let mut rings = RingState::default();
-    let outcome = tiles::refine_tiled(&mut h, &mut stats, per_tile)
-        .and_then(|_| refine_and_verify(&mut h, &mut stats, &mut rings));
+    let progress = params.progress.as_ref();
+    let outcome = tiles::refine_tiled(&mut h, &mut stats, per_tile, progress)
+        .and_then(|_| refine_and_verify(&mut h, &mut stats, &mut rings, progress));
     match outcome {
         Ok(mesh) => Ok(ExtendedRun {
             hierarchy: h,
@@ -371,15 +373,22 @@ fn mesh_extended_in_tiles(input: &Pslg, params: &Params, per_tile: usize) -> Res
     }
 }
 
+/// The whole run from the root or from the tiles' join: the simple refinement, the extended
+/// rules, the self-check and its repairs, the final dual; `progress` hears of each phase.
 fn refine_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
     state: &mut RingState,
+    progress: Option<&Progress>,
 ) -> Result<TriMesh, Stop> {
+    progress::phase(progress, "simple refinement");
     let candidates = refine_simple_and_sizes(h)?;
-    match extend_and_verify(h, stats, state, candidates, None)? {
+    match extend_and_verify(h, stats, state, candidates, None, progress)? {
         Some(mesh) => Ok(mesh),
-        None => Ok(final_dual(h, state)),
+        None => {
+            progress::phase(progress, "final dual");
+            Ok(final_dual(h, state))
+        }
     }
 }
 
@@ -403,4 +412,110 @@ pub(crate) fn final_dual(h: &Hierarchy, state: &RingState) -> TriMesh {
     let relocate = |k| relocated(h, &r, k);
     let later = |emit: &mut dyn FnMut([Key; 3])| chain_triangles(h, &r, &chains, emit);
     dual::extract_relocated(h, (&moved, &relocate), &patch, &later).0
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::Point;
+    use crate::progress::{Count, Event};
+    use std::sync::{Arc, Mutex};
+
+    /// Points from a fixed xorshift sequence, uniform in the unit square.
+    fn scattered(n: usize) -> Vec<Point> {
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        (0..n).map(|_| [next(), next()]).collect()
+    }
+
+    /// The run of `mesher` on `input` with `params`, and the events it reported.
+    fn observed(mesher: &dyn Mesher, input: &Pslg, params: &Params) -> (MeshRun, Vec<Event>) {
+        let events = Arc::new(Mutex::new(Vec::new()));
+        let progress = {
+            let events = Arc::clone(&events);
+            Progress::new(move |e| events.lock().unwrap().push(e))
+        };
+        let run = mesher
+            .mesh(input, &params.clone().with_progress(progress))
+            .expect("meshes");
+        let events = events.lock().unwrap().clone();
+        (run, events)
+    }
+
+    fn bits(mesh: &TriMesh) -> (Vec<u64>, &[[u32; 3]]) {
+        let v = mesh.vertices.iter().flat_map(|p| p.map(f64::to_bits));
+        (v.collect(), &mesh.triangles)
+    }
+
+    /// The phases of `events`, each once where it repeats.
+    fn phases(events: &[Event]) -> Vec<&'static str> {
+        let mut out: Vec<&'static str> = events.iter().map(|e| e.phase).collect();
+        out.dedup();
+        out
+    }
+
+    #[test]
+    fn hex_reports_its_tiles_in_order_then_its_phases_and_meshes_the_same_bytes() {
+        // More points than a tile of `hex` holds, so that `hex` itself tiles them; `HexInTiles`
+        // cuts them into many more tiles, finished on three threads.
+        let input = Pslg::from_points(scattered(tiles::TILE_POINTS + 52));
+        let params = Params::default().with_threads(std::num::NonZeroUsize::new(3).unwrap());
+        for (mesher, least_tiles) in [(&Hex as &dyn Mesher, 2), (&HexInTiles(64), 30)] {
+            let unobserved = mesher.mesh(&input, &params).expect("meshes");
+            let (run, events) = observed(mesher, &input, &params);
+            assert!(run.complete && unobserved.complete);
+            assert_eq!(bits(&run.mesh), bits(&unobserved.mesh), "the same bytes");
+
+            // The tiles first: 0 of them, then each count once and in order, up to all.
+            let tiles: Vec<Count> = events
+                .iter()
+                .take_while(|e| e.phase == "tiles")
+                .map(|e| e.count.expect("tiles are counted"))
+                .collect();
+            let total = tiles[0].total.expect("the tiles' number is known");
+            assert!(total >= least_tiles, "{total} tiles");
+            let counts: Vec<u64> = tiles.iter().map(|c| c.done).collect();
+            assert_eq!(counts, (0..=total).collect::<Vec<u64>>());
+            assert!(tiles.iter().all(|c| c.total == Some(total)));
+
+            // Then the whole run's phases in order, up to the complete check.
+            let seen = phases(&events);
+            let complete_check = [
+                "tiles",
+                "joining the tiles",
+                "simple refinement",
+                "extended rules",
+                "self-check: the dual",
+                "self-check: ring cells",
+                "self-check: angles and circles",
+            ];
+            assert_eq!(seen[..complete_check.len()], complete_check, "{seen:?}");
+            // The complete check of these points rejects triangles: local checks and rounds
+            // of rules follow, each counted from 1 in order, and the final dual is spliced
+            // last.
+            let after = &events[events
+                .iter()
+                .position(|e| e.phase == complete_check[6])
+                .unwrap()
+                + 1..];
+            assert!(!after.is_empty(), "the complete check passed: {seen:?}");
+            for phase in ["local checks", "repair round"] {
+                let counts: Vec<u64> = after
+                    .iter()
+                    .filter(|e| e.phase == phase)
+                    .map(|e| e.count.expect("counted").done)
+                    .collect();
+                assert_eq!(counts, (1..=counts.len() as u64).collect::<Vec<u64>>());
+            }
+            assert!(after
+                .iter()
+                .all(|e| ["local checks", "repair round", "final dual"].contains(&e.phase)));
+            assert_eq!(seen.last(), Some(&"final dual"), "{seen:?}");
+        }
+    }
 }

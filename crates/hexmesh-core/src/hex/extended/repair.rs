@@ -23,6 +23,7 @@ use crate::hex::refine::drain;
 use crate::hex::region::{full_leaves_in, Region, REACH};
 use crate::hex::subdivision::{Cell, Hierarchy, Stop};
 use crate::mesh::TriMesh;
+use crate::progress::{self, Progress};
 
 /// The extended rules on `candidates` to a fixed point, then the self-check of the dual,
 /// repeated until the dual meets every bound. With `changed == None` the first check covers
@@ -34,15 +35,20 @@ use crate::mesh::TriMesh;
 /// whole dual is spliced from the complete one and that region's (`splice`); `None` says
 /// that the whole dual passes but is still to be extracted (`final_dual`): there was no
 /// complete check (incremental insertion), or the splice was refused. `state` keeps the
-/// ring decisions of the self-check.
+/// ring decisions of the self-check. `progress` hears of the phases: the extended rules, the
+/// steps of the complete check, each local check, each later round of rules, the splice of
+/// the final dual.
 pub(crate) fn extend_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
     state: &mut RingState,
     candidates: KeySet,
     changed: Option<Vec<Key>>,
+    progress: Option<&Progress>,
 ) -> Result<Option<TriMesh>, Stop> {
-    Repair::new(h, stats, state, candidates, changed).run()
+    let mut repair = Repair::new(h, stats, state, candidates, changed);
+    repair.progress = progress;
+    repair.run()
 }
 
 /// The extended rules on `candidates` to a fixed point and nothing else: no coarsening, no
@@ -116,6 +122,10 @@ struct Repair<'a> {
     /// The vertices of offending triangles left for later (`set_aside`).
     stuck: Vec<Key>,
     scope: Scope,
+    /// Who hears of the phases (`extend_and_verify`); `None` for a tile.
+    progress: Option<&'a Progress>,
+    /// Local checks made so far, for `progress`.
+    local_checks: u64,
 }
 
 impl<'a> Repair<'a> {
@@ -146,14 +156,23 @@ impl<'a> Repair<'a> {
             fresh,
             stuck: Vec::new(),
             scope: Scope::Fresh,
+            progress: None,
+            local_checks: 0,
         }
     }
 
     /// Rounds of rules, then checks, then the subdivisions the checks ask for, until a
     /// check passes.
     fn run(mut self) -> Result<Option<TriMesh>, Stop> {
+        let first_round = self.stats.rounds;
         loop {
             self.stats.rounds += 1;
+            // The first round's rules are the bulk of the refinement; a later round's rules
+            // follow the subdivisions the last check asked for.
+            match self.stats.rounds - first_round {
+                1 => progress::phase(self.progress, "extended rules"),
+                n => progress::round(self.progress, "repair round", n - 1),
+            }
             self.apply_rules()?;
             // The work list of the subdivisions is empty now but holds the room of its
             // longest batch (25 cells a subdivision: about 2 GB at plane-1m), which the
@@ -242,6 +261,7 @@ impl<'a> Repair<'a> {
     /// subdivisions are left, trying first the repairs that need none.
     fn check(&mut self, r: &mut Rings, undo: &mut Undo) -> Result<Verdict, Stop> {
         let cells = if self.changed.is_none() {
+            progress::phase(self.progress, "self-check: the dual");
             SettleCells::listed(self.h, r)
         } else {
             SettleCells::Lookup
@@ -265,11 +285,23 @@ impl<'a> Repair<'a> {
     ) -> Result<Option<Verdict>, Stop> {
         self.h.check_time()?;
         let full = self.changed.is_none();
+        // The complete check is long (at plane-100k nearly half the run): its steps are
+        // reported one by one; a local check is short, and counted.
+        if !full {
+            self.local_checks += 1;
+            progress::round(self.progress, "local checks", self.local_checks);
+        }
         let around_all = self.scope == Scope::All;
         let mut part = self.extract(r, around_all);
+        if full {
+            progress::phase(self.progress, "self-check: ring cells");
+        }
         self.stats.checked_triangles += part.mesh.triangles.len() as u64;
         self.settle(r, cells, &mut part);
         part.blame_fins();
+        if full {
+            progress::phase(self.progress, "self-check: angles and circles");
+        }
         let mut bad = offending_leaves(
             self.h,
             &part.mesh,
@@ -505,6 +537,9 @@ impl<'a> Repair<'a> {
 
     /// The whole dual once a check has passed (`whole_dual`).
     fn finish(&mut self, mut part: Checked) -> Option<TriMesh> {
+        if part.inner.is_some() {
+            progress::phase(self.progress, "final dual");
+        }
         whole_dual(
             self.h,
             self.stats,

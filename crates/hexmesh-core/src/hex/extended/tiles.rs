@@ -30,6 +30,7 @@ use crate::geom::Point;
 use crate::hex::lattice::Lattice;
 use crate::hex::parallel::each_in_parallel;
 use crate::hex::subdivision::{Hierarchy, Stop};
+use crate::progress::{self, Counter, Progress};
 
 /// The mean number of points a tile is chosen to hold at most: enough that the band along a
 /// tile's edge, where its own hexagons are coarser than the whole run's, is a small part of
@@ -78,11 +79,13 @@ pub(crate) fn tiles(
 /// Refines `h` (unrefined) tile by tile and joins the tiles' hierarchies (module docs), with
 /// tiles of at most `per_tile` points on average. Returns false, leaving `h` as it was, when
 /// the run is not tiled: too few points, a budget of steps or vertices, or a tile at the
-/// precision limit. A time budget that runs out stops it after the join.
+/// precision limit. A time budget that runs out stops it after the join. `progress` hears of
+/// each tile finished ("tiles", k of the tiles) and of the join.
 pub(crate) fn refine_tiled(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
     per_tile: usize,
+    progress: Option<&Progress>,
 ) -> Result<bool, Stop> {
     if h.budget().max_steps.is_some() || h.budget().max_vertices.is_some() {
         return Ok(false);
@@ -91,11 +94,13 @@ pub(crate) fn refine_tiled(
         return Ok(false);
     };
     let parent = &*h;
+    let done = Counter::start(progress, "tiles", tiles.len() as u64);
     let results = each_in_parallel(parent.threads(), &tiles, |tile| {
         let points = tile.iter().map(|&i| parent.points[i as usize]).collect();
         let mut part = parent.part(points);
         let mut part_stats = ExtendedStats::default();
         let outcome = refine_part(&mut part, &mut part_stats);
+        done.tick();
         (part.into_subdivided(), part_stats, outcome)
     });
     let mut stop = None;
@@ -110,6 +115,7 @@ pub(crate) fn refine_tiled(
         stats.mc3_splits += part_stats.mc3_splits;
         sets.push(set);
     }
+    progress::phase(progress, "joining the tiles");
     h.absorb(sets);
     match stop {
         Some(stop) => Err(stop),
@@ -196,7 +202,7 @@ mod tests {
         let params = crate::mesher::Params::default();
         let mut h = hierarchy(&points, &params);
         let mut stats = ExtendedStats::default();
-        assert_eq!(refine_tiled(&mut h, &mut stats, 40), Ok(true));
+        assert_eq!(refine_tiled(&mut h, &mut stats, 40, None), Ok(true));
         assert!(stats.rule_splits > 0);
         // Balanced (Sec. 3.3), every point in the leaf the descent finds, and the count of
         // full leaves the one a scan gives.
@@ -231,7 +237,7 @@ mod tests {
             let params = crate::mesher::Params::default().with_budget(budget);
             let mut h = hierarchy(&points, &params);
             let mut stats = ExtendedStats::default();
-            assert_eq!(refine_tiled(&mut h, &mut stats, 40), Ok(false));
+            assert_eq!(refine_tiled(&mut h, &mut stats, 40, None), Ok(false));
             assert_eq!(h.steps, 0);
         }
     }

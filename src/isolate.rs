@@ -8,7 +8,7 @@
 //! request  = "HXMI" u32:version str:mesher params pslg
 //! params   = opt<f64>:min_angle opt<f64>:max_area opt<u64>:max_steps opt<u64>:max_vertices
 //!            opt<(u64 secs, u32 nanos)>:max_time opt<f64>:max_rounding opt<str>:switches
-//!            opt<u64>:threads
+//!            opt<u64>:threads u8:forward_progress
 //! pslg     = u64:n (f64 x, f64 y)×n u64:m (u32, u32)×m u64:h (f64, f64)×h opt<(f64,f64,f64,f64,f64)>:hexagon (centre, circumradius, turn)
 //!            u64:r (f64 x, f64 y, f64 attribute, opt<f64>:max_area)×r  (the regions)
 //! answer   = payload u64:payload_len "HXMRESLT"
@@ -23,10 +23,22 @@
 //! The answer is a trailer at the very end of stdout, and the child flushes C's stdio
 //! buffers before writing it: Triangle prints its errors with `printf`, and such text must
 //! neither corrupt the answer nor get lost (it is quoted when the child dies).
+//!
+//! When the request asks for it (`forward_progress` = 1, which `run_isolated_watched` sets),
+//! the child passes the mesher's progress (`hexmesh_core::progress`) to the parent as lines
+//! on its stderr, one an event, at most one every `FORWARD_EVERY` within a phase (a new phase
+//! and a count's last item always):
+//!
+//! progress = "hexmesh-progress: " (u64 done | "-") " " (u64 total | "-") " " phase "\n"
+//!
+//! The parent takes such lines out of the stderr it keeps, so that the error messages that
+//! quote the child's stderr (a panic, C's complaints) read as they did before.
 
-use std::io::{Read, Write};
+use std::io::{BufRead, Read, Write};
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, ExitCode, ExitStatus, Stdio};
+use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::Mutex;
 use std::thread;
 use std::time::{Duration, Instant};
 
@@ -34,6 +46,7 @@ use crate::error::{Error, InputError, Result, Unenclosed};
 use crate::geom::{Hexagon, Turn};
 use crate::mesh::{Labels, Pslg, Region, TriMesh};
 use crate::mesher::{Budget, MeshRun, Params, StopReason};
+use crate::progress::{Count, Event, Progress};
 use crate::registry;
 
 /// The hidden subcommand the child runs.
@@ -41,9 +54,15 @@ pub const CHILD_COMMAND: &str = "__run-mesher";
 
 const REQUEST_MAGIC: &[u8; 4] = b"HXMI";
 const ANSWER_MAGIC: &[u8; 8] = b"HXMRESLT";
-const VERSION: u32 = 6;
+const VERSION: u32 = 7;
 /// How much of the child's stderr and stdout an error quotes.
 const TAIL_BYTES: usize = 2000;
+/// The start of a line of the child's stderr that carries the mesher's progress.
+const PROGRESS_PREFIX: &str = "hexmesh-progress: ";
+/// The child forwards at most one event of a phase this often (a new phase, and the last item
+/// of a count, at once): a mesher may report thousands, the parent redraws a few times a
+/// second.
+const FORWARD_EVERY: Duration = Duration::from_millis(100);
 
 /// One isolated meshing call: the run as the child saw it, and the child's peak resident
 /// memory (VmHWM; for a timed-out child, its value just before the kill).
@@ -51,6 +70,28 @@ const TAIL_BYTES: usize = 2000;
 pub struct Isolated {
     pub run: MeshRun,
     pub peak_rss_bytes: u64,
+}
+
+/// What the parent sees of the isolated child while it runs (`run_isolated_watched`).
+#[derive(Debug, Clone, Copy)]
+pub struct Watch<'a> {
+    /// The time since the child was started.
+    pub spent: Duration,
+    /// The child's process id.
+    pub pid: u32,
+    /// The mesher's last progress report: `None` before the first, and from a mesher that
+    /// reports none (`hexmesh_core::progress`).
+    pub progress: Option<&'a ChildProgress>,
+}
+
+/// A progress event of the mesher in the child (`hexmesh_core::progress::Event`), as the
+/// parent reads it from the child's stderr.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ChildProgress {
+    /// What the mesher is doing.
+    pub phase: String,
+    /// How far into the phase, when it counts items.
+    pub count: Option<Count>,
 }
 
 /// Runs `mesher` on `input` in a child process of `exe` and waits at most `timeout`.
@@ -66,23 +107,36 @@ pub fn run_isolated(
     params: &Params,
     timeout: Duration,
 ) -> Result<Isolated> {
-    run_isolated_watched(exe, mesher, input, params, timeout, &mut |_, _| {})
+    run(exe, mesher, input, params, timeout, None)
 }
 
-/// `run_isolated`, calling `watch` with the time spent and the child's process id each time
-/// it looks whether the child has finished (every 20 ms at most), so that the caller can
-/// show the run's progress (`hexmesh mesh` draws it; the child itself writes nothing).
+/// `run_isolated`, calling `watch` with the time spent, the child's process id and the
+/// mesher's last progress report each time it looks whether the child has finished (every
+/// 20 ms at most), so that the caller can show the run's progress (`hexmesh mesh` draws
+/// it). The child is asked to forward the mesher's progress (module docs).
 pub fn run_isolated_watched(
     exe: &Path,
     mesher: &str,
     input: &Pslg,
     params: &Params,
     timeout: Duration,
-    watch: &mut dyn FnMut(Duration, u32),
+    watch: &mut dyn FnMut(&Watch<'_>),
+) -> Result<Isolated> {
+    run(exe, mesher, input, params, timeout, Some(watch))
+}
+
+/// `run_isolated`, and `run_isolated_watched` when there is a `watch`.
+fn run(
+    exe: &Path,
+    mesher: &str,
+    input: &Pslg,
+    params: &Params,
+    timeout: Duration,
+    watch: Option<&mut dyn FnMut(&Watch<'_>)>,
 ) -> Result<Isolated> {
     input.validate_input()?;
     registry::mesher(mesher)?;
-    let request = encode_request(mesher, input, params);
+    let request = encode_request(mesher, input, params, watch.is_some());
     let spawn_err = |e: std::io::Error| Error::Io {
         path: exe.to_path_buf(),
         source: e,
@@ -104,9 +158,10 @@ pub fn run_isolated_watched(
         }
     });
     let out_reader = thread::spawn(move || read_all(stdout));
-    let err_reader = thread::spawn(move || read_all(stderr));
+    let (events, reports) = mpsc::channel();
+    let err_reader = thread::spawn(move || read_stderr(stderr, &events));
 
-    let waited = wait_with_timeout(&mut child, timeout, start, watch);
+    let waited = wait_with_timeout(&mut child, timeout, start, watch, &reports);
     let elapsed = start.elapsed();
     let _ = writer.join();
     let out = out_reader.join().unwrap_or_default();
@@ -159,15 +214,27 @@ fn wait_with_timeout(
     child: &mut Child,
     timeout: Duration,
     start: Instant,
-    watch: &mut dyn FnMut(Duration, u32),
+    mut watch: Option<&mut dyn FnMut(&Watch<'_>)>,
+    reports: &Receiver<ChildProgress>,
 ) -> std::io::Result<Waited> {
     let mut pause = Duration::from_millis(1);
+    let mut last = None;
     loop {
         if let Some(status) = child.try_wait()? {
             return Ok(Waited::Exited(status));
         }
         let spent = start.elapsed();
-        watch(spent, child.id());
+        if let Some(watch) = watch.as_mut() {
+            // Only the latest report is shown; the ones before it are passed by.
+            if let Some(report) = reports.try_iter().last() {
+                last = Some(report);
+            }
+            watch(&Watch {
+                spent,
+                pid: child.id(),
+                progress: last.as_ref(),
+            });
+        }
         if spent >= timeout {
             let peak_rss_bytes = peak_rss(&format!("/proc/{}/status", child.id()));
             // The child may have exited between try_wait and kill: then kill fails harmlessly.
@@ -189,6 +256,95 @@ fn read_all<R: Read>(source: Option<R>) -> Vec<u8> {
         let _ = s.read_to_end(&mut buf);
     }
     buf
+}
+
+/// The child's stderr: its progress lines (module docs) sent to `events` as they come, every
+/// other byte kept, in order, for the error messages that quote it.
+fn read_stderr<R: Read>(source: Option<R>, events: &Sender<ChildProgress>) -> Vec<u8> {
+    let mut kept = Vec::new();
+    let Some(source) = source else {
+        return kept;
+    };
+    let mut lines = std::io::BufReader::new(source);
+    let mut line = Vec::new();
+    loop {
+        line.clear();
+        match lines.read_until(b'\n', &mut line) {
+            Ok(0) | Err(_) => return kept,
+            Ok(_) => {}
+        }
+        match parse_progress_line(&line) {
+            // The parent may have stopped listening; the rest is still read and kept.
+            Some(report) => drop(events.send(report)),
+            None => kept.extend_from_slice(&line),
+        }
+    }
+}
+
+/// The progress line (module docs) that forwards `event`.
+fn progress_line(event: &Event) -> String {
+    let figure = |v: Option<u64>| v.map_or("-".to_string(), |v| v.to_string());
+    let done = event.count.map(|c| c.done);
+    let total = event.count.and_then(|c| c.total);
+    format!(
+        "{PROGRESS_PREFIX}{} {} {}\n",
+        figure(done),
+        figure(total),
+        event.phase
+    )
+}
+
+/// The report a whole progress line (`progress_line`) carries; `None` for any other line.
+fn parse_progress_line(line: &[u8]) -> Option<ChildProgress> {
+    let line = std::str::from_utf8(line).ok()?;
+    let rest = line.strip_prefix(PROGRESS_PREFIX)?.strip_suffix('\n')?;
+    let (done, rest) = rest.split_once(' ')?;
+    let (total, phase) = rest.split_once(' ')?;
+    let figure = |s: &str| match s {
+        "-" => Ok(None),
+        s => s.parse::<u64>().map(Some),
+    };
+    let (done, total) = (figure(done).ok()?, figure(total).ok()?);
+    let count = match (done, total) {
+        (Some(done), total) => Some(Count { done, total }),
+        (None, None) => None,
+        (None, Some(_)) => return None,
+    };
+    Some(ChildProgress {
+        phase: phase.to_string(),
+        count,
+    })
+}
+
+/// The observer the child gives the mesher when the parent asks for its progress: each
+/// event it passes on (`worth_forwarding`) becomes a progress line on stderr, written whole
+/// in one call so that other writers to stderr do not split it.
+fn forward_progress() -> Progress {
+    let last: Mutex<Option<(&'static str, Instant)>> = Mutex::new(None);
+    Progress::new(move |event| {
+        let mut last = last
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        let now = Instant::now();
+        if !worth_forwarding(*last, &event, now) {
+            return;
+        }
+        *last = Some((event.phase, now));
+        let _ = std::io::stderr()
+            .lock()
+            .write_all(progress_line(&event).as_bytes());
+    })
+}
+
+/// Whether the child passes `event` on at `now`, `last` being the phase of the last event it
+/// passed on and when: a new phase and the last item of a count at once, other events of a
+/// phase at most once every `FORWARD_EVERY`.
+fn worth_forwarding(last: Option<(&str, Instant)>, event: &Event, now: Instant) -> bool {
+    let finished = event.count.is_some_and(|c| Some(c.done) == c.total);
+    let recent = last.is_some_and(|(phase, at)| {
+        phase == event.phase && now.saturating_duration_since(at) < FORWARD_EVERY
+    });
+    finished || !recent
 }
 
 fn describe_status(status: ExitStatus) -> String {
@@ -257,7 +413,7 @@ pub fn child_main() -> ExitCode {
         eprintln!("hexmesh {CHILD_COMMAND}: cannot read the request: {e}");
         return ExitCode::from(2);
     }
-    let (name, input, params) = match decode_request(&request) {
+    let (name, input, mut params, forward) = match decode_request(&request) {
         Ok(r) => r,
         Err(e) => {
             eprintln!("hexmesh {CHILD_COMMAND}: {e}");
@@ -265,6 +421,9 @@ pub fn child_main() -> ExitCode {
         }
     };
     drop(request);
+    if forward {
+        params.progress = Some(forward_progress());
+    }
     let mut payload = Vec::new();
     match run_in_child(&name, &input, &params) {
         Ok((run, rss)) => encode_run(&mut payload, &run, rss),
@@ -391,7 +550,9 @@ fn put_opt<T>(b: &mut Vec<u8>, v: Option<T>, put: impl FnOnce(&mut Vec<u8>, T)) 
     }
 }
 
-fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
+/// The request for a run of `mesher` on `input` with `params` (module docs); `forward`: the
+/// child is to forward the mesher's progress.
+fn encode_request(mesher: &str, input: &Pslg, params: &Params, forward: bool) -> Vec<u8> {
     let mut b = Vec::with_capacity(
         64 + mesher.len()
             + 16 * (input.points.len() + input.holes.len())
@@ -414,6 +575,7 @@ fn encode_request(mesher: &str, input: &Pslg, params: &Params) -> Vec<u8> {
     put_opt(&mut b, params.max_rounding, put_f64);
     put_opt(&mut b, params.switches.as_deref(), put_str);
     put_opt(&mut b, params.threads, |b, n| put_u64(b, n.get() as u64));
+    b.push(u8::from(forward));
     put_u64(&mut b, input.points.len() as u64);
     for p in &input.points {
         put_f64(&mut b, p[0]);
@@ -624,7 +786,9 @@ impl<'a> Reader<'a> {
     }
 }
 
-fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
+/// The mesher's name, the input, the parameters and whether to forward progress, as
+/// `encode_request` wrote them.
+fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params, bool)> {
     let mut r = Reader {
         buf,
         pos: 0,
@@ -665,6 +829,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
     } else {
         None
     };
+    let forward = r.flag()?;
     let points = r.points()?;
     let m = r.count(8)?;
     let segments = (0..m)
@@ -721,7 +886,7 @@ fn decode_request(buf: &[u8]) -> Result<(String, Pslg, Params)> {
             ..Labels::default()
         },
     };
-    Ok((name, input, params))
+    Ok((name, input, params, forward))
 }
 
 /// A refusal of a PSLG whose segments do not enclose a domain (`Pslg::check_enclosed`), or
@@ -958,9 +1123,10 @@ mod tests {
             .with_threads(std::num::NonZeroUsize::new(3).unwrap());
         params.budget.max_time = Some(Duration::from_millis(1500));
         params.budget.max_vertices = Some(77);
-        let buf = encode_request("triangle", &input, &params);
-        let (name, back, p) = decode_request(&buf).unwrap();
+        let buf = encode_request("triangle", &input, &params, true);
+        let (name, back, p, forward) = decode_request(&buf).unwrap();
         assert_eq!(name, "triangle");
+        assert!(forward);
         assert_eq!(p, params);
         assert_eq!(p.switches.as_deref(), Some("q25DS100 ünï"));
         assert_eq!(back.segments, input.segments);
@@ -1034,13 +1200,15 @@ mod tests {
             "spade",
             &Pslg::from_points(vec![[0.0, 0.0]]),
             &Params::default(),
+            false,
         );
         for cut in 0..buf.len() {
             assert!(decode_request(&buf[..cut]).is_err(), "cut at {cut}");
         }
         let mut huge = buf.clone();
-        // The point count sits right after magic, version, name and nine absent options.
-        let at = 4 + 4 + 4 + 5 + 9;
+        // The point count sits right after magic, version, name, nine absent options and the
+        // progress flag.
+        let at = 4 + 4 + 4 + 5 + 9 + 1;
         huge[at..at + 8].copy_from_slice(&u64::MAX.to_le_bytes());
         let e = decode_request(&huge).unwrap_err().to_string();
         assert!(e.contains("exceeds the message"), "{e}");
@@ -1069,6 +1237,104 @@ mod tests {
         assert_eq!(back.run, run);
         assert_eq!(back.peak_rss_bytes, 4096);
         assert!(trailer(&out[..out.len() - 1]).is_none());
+    }
+
+    fn event(phase: &'static str, done: Option<u64>, total: Option<u64>) -> Event {
+        Event {
+            phase,
+            count: done.map(|done| Count { done, total }),
+        }
+    }
+
+    #[test]
+    fn a_progress_line_carries_its_event_and_no_other_line_parses_as_one() {
+        for e in [
+            event("tiles", Some(45), Some(187)),
+            event("self-check: the dual", None, None),
+            event("repair round", Some(3), None),
+        ] {
+            let line = progress_line(&e);
+            let back = parse_progress_line(line.as_bytes()).expect(&line);
+            assert_eq!(back.phase, e.phase);
+            assert_eq!(back.count, e.count);
+        }
+        assert_eq!(
+            progress_line(&event("tiles", Some(45), Some(187))),
+            "hexmesh-progress: 45 187 tiles\n"
+        );
+        for other in [
+            "thread 'main' panicked at src/x.rs:1:1:\n",
+            "hexmesh-progress: 45 187 tiles",
+            "hexmesh-progress: - 187 tiles\n",
+            "hexmesh-progress: x - tiles\n",
+            "hexmesh-progress: 45 187\n",
+            " hexmesh-progress: 45 187 tiles\n",
+        ] {
+            assert_eq!(parse_progress_line(other.as_bytes()), None, "{other:?}");
+        }
+    }
+
+    #[test]
+    fn the_childs_stderr_loses_its_progress_lines_and_keeps_everything_else_in_order() {
+        let stderr = "Warning: from C\nhexmesh-progress: 1 7 tiles\nthread 'main' panicked\n\
+                      hexmesh-progress: - - joining the tiles\nno newline at the end";
+        let (events, reports) = mpsc::channel();
+        let kept = read_stderr(Some(stderr.as_bytes()), &events);
+        assert_eq!(
+            String::from_utf8(kept).unwrap(),
+            "Warning: from C\nthread 'main' panicked\nno newline at the end"
+        );
+        let reports: Vec<ChildProgress> = reports.try_iter().collect();
+        assert_eq!(
+            reports,
+            [
+                ChildProgress {
+                    phase: "tiles".into(),
+                    count: Some(Count {
+                        done: 1,
+                        total: Some(7)
+                    })
+                },
+                ChildProgress {
+                    phase: "joining the tiles".into(),
+                    count: None
+                },
+            ]
+        );
+        // A parent that stopped listening still gets the rest of the text.
+        let (events, reports) = mpsc::channel();
+        drop(reports);
+        let kept = read_stderr(Some(stderr.as_bytes()), &events);
+        assert_eq!(
+            String::from_utf8(kept).unwrap(),
+            "Warning: from C\nthread 'main' panicked\nno newline at the end"
+        );
+    }
+
+    #[test]
+    fn within_a_phase_events_are_forwarded_a_tenth_of_a_second_apart() {
+        let t0 = Instant::now();
+        let at = |ms: u64| t0 + Duration::from_millis(ms);
+        let tiles = |done| event("tiles", Some(done), Some(187));
+        // The first event, and a new phase, pass at once.
+        assert!(worth_forwarding(None, &tiles(0), t0));
+        assert!(worth_forwarding(
+            Some(("tiles", at(0))),
+            &event("joining the tiles", None, None),
+            at(1)
+        ));
+        // Within the phase, not before a tenth of a second has passed.
+        assert!(!worth_forwarding(Some(("tiles", at(0))), &tiles(5), at(99)));
+        assert!(worth_forwarding(Some(("tiles", at(0))), &tiles(5), at(100)));
+        // The last item of a count passes at once.
+        assert!(worth_forwarding(Some(("tiles", at(0))), &tiles(187), at(1)));
+        // Rounds without a total are throttled like any other event of their phase.
+        let round = event("local checks", Some(2), None);
+        assert!(!worth_forwarding(
+            Some(("local checks", at(0))),
+            &round,
+            at(50)
+        ));
     }
 
     #[test]

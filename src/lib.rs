@@ -8,7 +8,7 @@
 //! → `quality` → `report`.
 
 pub use hexmesh_core::internals::{hex, refine, rhomb};
-pub use hexmesh_core::{error, geom, io, mesh, quality};
+pub use hexmesh_core::{error, geom, io, mesh, progress, quality};
 
 /// The library's `mesher` module (`hexmesh_core::mesher`): the trait every mesher sits
 /// behind, its parameters and its result. (A plain re-export would bring the library's

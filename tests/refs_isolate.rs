@@ -6,7 +6,7 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use hexmesh::isolate::{find_exe, run_isolated};
+use hexmesh::isolate::{find_exe, run_isolated, run_isolated_watched, ChildProgress};
 use hexmesh::maxangle::{max_angle, DEFAULT_START, DEFAULT_STEP};
 use hexmesh::{mesher, Error, Params, Pslg};
 
@@ -175,6 +175,64 @@ fn a_child_that_exits_like_triangle_is_an_error_quoting_its_stdout() {
         err.contains("status 1") && err.contains("Ran out of precision"),
         "{err}"
     );
+}
+
+#[test]
+fn a_watched_hex_run_forwards_its_progress_and_returns_the_same_mesh() {
+    // More points than a tile of `hex` holds, so that it reports tiles.
+    let input = point_set(2100);
+    let params = Params::default();
+    let t = Duration::from_secs(60);
+    let plain = run_isolated(exe(), "hex", &input, &params, t).unwrap();
+    let mut seen: Vec<ChildProgress> = Vec::new();
+    let watched = run_isolated_watched(exe(), "hex", &input, &params, t, &mut |w| {
+        if let Some(p) = w.progress {
+            if seen.last() != Some(p) {
+                seen.push(p.clone());
+            }
+        }
+    })
+    .unwrap();
+    assert_eq!(
+        bits(&watched.run.mesh.vertices),
+        bits(&plain.run.mesh.vertices)
+    );
+    assert_eq!(watched.run.mesh.triangles, plain.run.mesh.triangles);
+    // How many reports the watch sees depends on the machine's speed; those it sees are
+    // hex's, in the order of its run: the tiles counted up to their number, then the rest.
+    let tiles: Vec<_> = seen.iter().filter(|p| p.phase == "tiles").collect();
+    for pair in tiles.windows(2) {
+        let (a, b) = (pair[0].count.unwrap(), pair[1].count.unwrap());
+        assert!(a.done < b.done && a.total == b.total, "{seen:?}");
+    }
+    let first_other = seen.iter().position(|p| p.phase != "tiles");
+    assert!(
+        seen[first_other.unwrap_or(seen.len())..]
+            .iter()
+            .all(|p| p.phase != "tiles"),
+        "{seen:?}"
+    );
+}
+
+#[test]
+fn the_childs_progress_lines_are_left_out_of_the_stderr_an_error_quotes() {
+    let exe = script(
+        "refs_progress.sh",
+        "cat >/dev/null; echo 'hexmesh-progress: 3 9 tiles' >&2; echo dying >&2; \
+         echo 'hexmesh-progress: - - joining the tiles' >&2; kill -ABRT $$",
+    );
+    let err = run_isolated_watched(
+        &exe,
+        "spade",
+        &point_set(5),
+        &Params::default(),
+        Duration::from_secs(10),
+        &mut |_| {},
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("SIGABRT") && err.contains("dying"), "{err}");
+    assert!(!err.contains("hexmesh-progress"), "{err}");
 }
 
 #[test]

@@ -408,7 +408,7 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
         &input,
         &params,
         timeout,
-        &mut |spent, pid| progress.meshing(spent, pid),
+        &mut |watch| progress.meshing(watch.spent, watch.pid),
     );
     let run = match isolated {
         Ok(isolated) => isolated.run,

@@ -402,14 +402,19 @@ fn mesh(args: &MeshArgs) -> Result<ExitCode> {
     check_triangle_switches(mesher.name(), &params)?;
     let exe = crate::isolate::find_exe()?;
     let mut progress = mesh_progress::MeshProgress::new(mesher.name());
-    let isolated = crate::isolate::run_isolated_watched(
-        &exe,
-        mesher.name(),
-        &input,
-        &params,
-        timeout,
-        &mut |watch| progress.meshing(watch.spent, watch.pid),
-    );
+    // Off a terminal nothing is drawn, and the child is not asked for its progress.
+    let isolated = if progress.draws() {
+        crate::isolate::run_isolated_watched(
+            &exe,
+            mesher.name(),
+            &input,
+            &params,
+            timeout,
+            &mut |watch| progress.meshing(watch),
+        )
+    } else {
+        crate::isolate::run_isolated(&exe, mesher.name(), &input, &params, timeout)
+    };
     let run = match isolated {
         Ok(isolated) => isolated.run,
         // A refusal naming input points names them by the lines of the file they came from.

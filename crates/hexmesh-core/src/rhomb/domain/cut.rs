@@ -16,7 +16,7 @@
 //! a ladder failed, and those within `clear` lattice sides of an input corner (where `fill`
 //! builds the corner's own triangles).
 
-use std::collections::HashMap;
+use crate::hex::fxhash::FxHashMap;
 
 pub use super::input::bbox;
 use super::input::{self, Domain};
@@ -166,7 +166,7 @@ impl<'a> Cut<'a> {
 /// kept before any erosion (inside the domain and untouched by it, no corner deleted, in
 /// bounds after the moves).
 pub struct Prepared {
-    edge: HashMap<(u32, u32), usize>,
+    edge: FxHashMap<(u32, u32), usize>,
     neighbours: Vec<Vec<u32>>,
     position: Vec<Point>,
     side: Vec<f64>,
@@ -215,7 +215,10 @@ pub fn prepare(
     let nv = mesh.vertices.len();
     let nt = mesh.triangles.len();
     // Edge adjacency and the neighbours of every vertex.
-    let mut edge: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * nt);
+    // Fx hashing: the lattice's edges are millions on a long boundary, and SipHash cost a
+    // third of the preparation.
+    let mut edge: FxHashMap<(u32, u32), usize> =
+        FxHashMap::with_capacity_and_hasher(3 * nt, Default::default());
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nv];
     let mut side = vec![0.0; nv];
     for (k, t) in mesh.triangles.iter().enumerate() {
@@ -431,7 +434,7 @@ pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
         .filter(|&k| keep[k])
         .map(|k| mesh.triangles[k])
         .collect();
-    let next: HashMap<u32, u32> = front_edges(&keep).into_iter().collect();
+    let next: FxHashMap<u32, u32> = front_edges(&keep).into_iter().collect();
     let mut starts: Vec<u32> = next.keys().copied().collect();
     starts.sort_unstable();
     let mut seen = vec![false; nv];

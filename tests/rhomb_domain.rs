@@ -111,3 +111,14 @@ fn a_near_miss_beside_a_hole_is_mended_by_moving_the_front_corner_not_eroding() 
     let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
     meshed_within_the_promise(path, &input);
 }
+
+#[test]
+fn a_fill_that_erosions_cannot_mend_is_meshed_on_a_finer_band() {
+    // Case 1 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a six-point star:
+    // beside two of its tips the ladder missed by 0.5° to 4°, and eroding the corners it
+    // named widened the gap until it missed by 85° and gave up after 300 erosions. Every
+    // leaf the boundary touches split once (`finer_band`), it meshes at once.
+    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case1-star.poly";
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    meshed_within_the_promise(path, &input);
+}

@@ -421,9 +421,10 @@ mod tests {
     use crate::progress::{Count, Event};
     use std::sync::{Arc, Mutex};
 
-    /// Points from a fixed xorshift sequence, uniform in the unit square.
-    fn scattered(n: usize) -> Vec<Point> {
-        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+    /// `n` points uniform in the unit square, from the xorshift sequence that starts at
+    /// `seed` (the tiles' tests share it).
+    pub(super) fn scattered(n: usize, seed: u64) -> Vec<Point> {
+        let mut x = seed;
         let mut next = || {
             x ^= x << 13;
             x ^= x >> 7;
@@ -463,7 +464,7 @@ mod tests {
     fn hex_reports_its_tiles_in_order_then_its_phases_and_meshes_the_same_bytes() {
         // More points than a tile of `hex` holds, so that `hex` itself tiles them; `HexInTiles`
         // cuts them into many more tiles, finished on three threads.
-        let input = Pslg::from_points(scattered(tiles::TILE_POINTS + 52));
+        let input = Pslg::from_points(scattered(tiles::TILE_POINTS + 52, 0x9e37_79b9_7f4a_7c15));
         let params = Params::default().with_threads(std::num::NonZeroUsize::new(3).unwrap());
         for (mesher, least_tiles) in [(&Hex as &dyn Mesher, 2), (&HexInTiles(64), 30)] {
             let unobserved = mesher.mesh(&input, &params).expect("meshes");

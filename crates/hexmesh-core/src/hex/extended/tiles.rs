@@ -179,16 +179,9 @@ mod tests {
         assert!(tiles(&lattice, &points[..50], 50).is_none());
     }
 
-    /// Points from a fixed xorshift sequence, uniform in the unit square.
+    /// `n` points uniform in the unit square from a fixed xorshift sequence.
     fn scattered(n: usize) -> Vec<Point> {
-        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64
-        };
-        (0..n).map(|_| [next(), next()]).collect()
+        super::super::tests::scattered(n, 0x2545_f491_4f6c_dd1d)
     }
 
     fn hierarchy(points: &[Point], params: &crate::mesher::Params) -> Hierarchy {

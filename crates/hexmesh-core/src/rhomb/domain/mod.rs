@@ -347,7 +347,8 @@ fn touches_boundary(frame: &Frame, segments: &cut::Segments, c: super::lattice::
 /// widens the gap: fuzz case 1 (a six-point star) walked its miss from 0.5° to 85° over 300
 /// erosions. Half the size puts the corners elsewhere along the same segments: case 1 meshes
 /// on the first finer band, case 11 (holes) on the second; of the first 40 fuzz cases, 30
-/// mesh instead of 25. A search, not a construction: no bound on how often it is needed.
+/// mesh instead of 25. A search, not a construction: nothing bounds how many finer bands a
+/// domain needs, and `FINER_BANDS` are tried.
 fn finer_band(
     tree: &mut Tree,
     frame: &Frame,

@@ -384,9 +384,11 @@ const BAND_EROSIONS: usize = 10;
 /// How many front corners near misses may move (`relax`, each tried in up to 36 places, a
 /// fill each) on one band before the band is made finer: one for every `POINTS_A_RELAXED`
 /// domain points, at least `BAND_RELAXED`. A domain of more corners has more places where a
-/// fill may miss: imr (107 points) moves 9 to 16, pslg-short-long (67) 5 to 8, and a
-/// six-point star that moves more than 4 spends its 20 s in trials (fuzz case 1).
+/// fill may miss: imr (107 points) moves 9 to 16, pslg-short-long (67) 5 to 8, while a
+/// six-point star (fuzz case 1) spent most of its 41 s in about 270 such trial fills.
 const BAND_RELAXED: usize = 4;
+
+/// Domain points for each front corner a band's near misses may move (`BAND_RELAXED`).
 const POINTS_A_RELAXED: usize = 6;
 
 /// How often the band may be made finer before the fill gives up.

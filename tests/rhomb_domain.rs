@@ -120,5 +120,26 @@ fn a_fill_that_erosions_cannot_mend_is_meshed_on_a_finer_band() {
     // leaf the boundary touches split once (`finer_band`), it meshes at once.
     let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case1-star.poly";
     let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
-    meshed_within_the_promise(path, &input);
+    let run = meshed_within_the_promise(path, &input);
+    // It is the finer band that meshes it: the run reports one, and the mesh is the same
+    // bytes when it is watched.
+    let events = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let progress = {
+        let events = std::sync::Arc::clone(&events);
+        hexmesh::progress::Progress::new(move |e| events.lock().unwrap().push(e))
+    };
+    let watched = Rhomb
+        .mesh(&input, &Params::default().with_progress(progress))
+        .unwrap();
+    assert_eq!(watched.mesh.triangles, run.mesh.triangles);
+    let events = events.lock().unwrap();
+    let bands: Vec<u64> = events
+        .iter()
+        .filter(|e| e.phase == "finer band")
+        .map(|e| e.count.expect("counted").done)
+        .collect();
+    assert_eq!(bands, [1]);
+    // The fill that succeeds is on that band.
+    let last = events.last().expect("events");
+    assert_eq!(last.phase, "band made finer once: fills");
 }

@@ -4,7 +4,8 @@
 //!
 //! Reporting changes nothing the mesher computes: the mesh is the same bytes with an observer
 //! or without one, and with none a report costs one test of an `Option`. `hex` reports its
-//! phases and its tiles, `hex-simple` its phases; the other meshers report nothing.
+//! phases and its tiles, `hex-simple` its phases, `rhomb` on a domain its tree, its band, each
+//! fill it tries and each finer band; the other meshers report nothing.
 
 use std::fmt;
 use std::sync::{Arc, Mutex, PoisonError};

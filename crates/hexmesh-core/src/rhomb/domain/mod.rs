@@ -162,10 +162,16 @@ fn build(
 ) -> Result<(crate::mesh::TriMesh, std::collections::BTreeSet<usize>, u64)> {
     let (domain, classes) = read(input)?;
     let guard = Guard::new(params.budget);
+    // What the run is doing, for a caller that shows it (`crate::progress`): the tree, the
+    // band, then each fill tried (erosions and moves), and each finer band.
+    let progress = params.progress.as_ref();
+    crate::progress::phase(progress, "quad-tree");
     let (mut tree, frame) = quad_tree(&domain, &classes, &guard).map_err(stopped)?;
     let n = domain.points.len();
     let segments = cut::Segments::new(&domain);
+    crate::progress::phase(progress, "band along the boundary");
     even_band(&mut tree, &frame, &segments, &guard).map_err(stopped)?;
+    let mut fills = 0u64;
     // Erosions since the band was last made finer, and how often it was (`finer_band`).
     let mut rounds = 0usize;
     let mut finer = 0usize;
@@ -199,6 +205,8 @@ fn build(
         loop {
             guard.check(&tree).map_err(stopped)?;
             let cut = cut::cut(&lattice, &prepared, &eroded);
+            fills += 1;
+            crate::progress::round(progress, FILLS[finer], fills);
             match fill::fill(&domain, &segments, &cut, &corner_side, &mut memo) {
                 Ok(f) => {
                     // The whole sharp corners, by their index in the output.
@@ -221,6 +229,8 @@ fn build(
                     let mut shape = cut.into_shape();
                     for p in relax::places(&lattice, &prepared, &segments, v) {
                         guard.check(&tree).map_err(stopped)?;
+                        fills += 1;
+                        crate::progress::round(progress, FILLS[finer], fills);
                         prepared.relocate(v, p);
                         let cut = cut::Cut::over(&prepared, shape);
                         let trial = fill::fill(&domain, &segments, &cut, &corner_side, &mut memo);
@@ -250,6 +260,7 @@ fn build(
                 // lattice's corners elsewhere along the boundary (`finer_band`).
                 Err(fill::Stuck::At(..) | fill::Stuck::Island(_)) if finer < FINER_BANDS => {
                     finer += 1;
+                    crate::progress::round(progress, "finer band", finer as u64);
                     finer_band(&mut tree, &frame, &segments, &guard).map_err(stopped)?;
                     rounds = 0;
                     memo = fill::Memo::default();
@@ -394,6 +405,15 @@ const POINTS_A_RELAXED: usize = 6;
 /// How often the band may be made finer before the fill gives up.
 const FINER_BANDS: usize = 3;
 
+/// The progress phase of the fills on the band made finer that many times (`crate::progress`):
+/// a finer band is quick to make, so a terminal sees it in the fills' name.
+const FILLS: [&str; FINER_BANDS + 1] = [
+    "fills",
+    "band made finer once: fills",
+    "band made finer twice: fills",
+    "band made finer three times: fills",
+];
+
 /// The output: the domain's points first (vertex i is input point i), then the lattice's
 /// corners in order of first use, then the fill's points.
 fn assemble(
@@ -531,6 +551,35 @@ mod tests {
         }
         input.holes = vec![[1.4375, 0.375], [0.4167, 1.104]];
         input
+    }
+
+    #[test]
+    fn a_domain_run_reports_its_tree_band_and_fills_in_order_and_meshes_the_same_bytes() {
+        use crate::progress::{Event, Progress};
+        use std::sync::{Arc, Mutex};
+        let input = l_with_holes();
+        let events: Arc<Mutex<Vec<Event>>> = Arc::default();
+        let progress = {
+            let events = Arc::clone(&events);
+            Progress::new(move |e| events.lock().unwrap().push(e))
+        };
+        let watched = mesh(&input, &Params::default().with_progress(progress)).unwrap();
+        let plain = mesh(&input, &Params::default()).unwrap();
+        assert_eq!(watched.mesh.vertices, plain.mesh.vertices);
+        assert_eq!(watched.mesh.triangles, plain.mesh.triangles);
+        let events = events.lock().unwrap();
+        let phases: Vec<&str> = events.iter().map(|e| e.phase).collect();
+        assert_eq!(phases[..2], ["quad-tree", "band along the boundary"]);
+        // Then the fills, counted from 1 in order (this domain needs no finer band).
+        let fills: Vec<u64> = events[2..]
+            .iter()
+            .map(|e| {
+                assert_eq!(e.phase, "fills");
+                e.count.expect("counted").done
+            })
+            .collect();
+        assert!(!fills.is_empty());
+        assert_eq!(fills, (1..=fills.len() as u64).collect::<Vec<u64>>());
     }
 
     #[test]

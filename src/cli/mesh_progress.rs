@@ -3,9 +3,9 @@
 //! count when it reports them, e.g. "tiles 45/187" with a bar, and the child's resident
 //! memory as it grows; writing the files; checking the mesh) and for how long. The parent
 //! draws it from what it sees of the child (`isolate::run_isolated_watched`): the memory from
-//! `/proc`, the phase from the progress lines the child forwards on its stderr (`hex` and
-//! `hex-simple` report phases, `hexmesh_core::progress`). Nothing is drawn when stderr is not
-//! a terminal or the run ends within the second.
+//! `/proc`, the phase from the progress lines the child forwards on its stderr (which meshers
+//! report, and what, is in `hexmesh_core::progress`). Nothing is drawn when stderr is not a
+//! terminal or the run ends within the second.
 
 use std::io::IsTerminal;
 use std::time::{Duration, Instant};

@@ -41,8 +41,10 @@ fn clustered(n: usize) -> Pslg {
 
 #[test]
 fn one_two_and_three_threads_make_the_same_bytes() {
+    // plane-10k: its contested ring cells are settled in stages of up to 510 cells to
+    // search, over threads from 256 (`settle_contested`).
     let cases = [
-        ("hex", "plane-2k"),
+        ("hex", "plane-10k"),
         ("hex", "clustered"),
         ("hex-simple", "plane-10k"),
     ];

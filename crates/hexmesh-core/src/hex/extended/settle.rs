@@ -9,7 +9,7 @@ use crate::geom::angle_deg;
 use crate::geom::{orient2d, Point};
 use crate::hex::classify::Rings;
 use crate::hex::lattice::{FxHashMap, Key, KeyBytes};
-use crate::hex::parallel::{ranges_in_parallel, PARALLEL_MIN};
+use crate::hex::parallel::{each_in_parallel, ranges_in_parallel, PARALLEL_MIN};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 use crate::quality::HEX;
@@ -83,7 +83,8 @@ pub(super) fn angle_margin(t: [Point; 3]) -> f64 {
 /// neighbouring contested cells. Cells whose triangles are good stay where their role put
 /// them. A second pass (`with_neighbours`) also moves the ring cells next to contested ones,
 /// accepting only moves that lower the number of bad triangles around the moved cell.
-/// Returns its moves (`Moves`).
+/// Returns its moves (`Moves`). The sweeps run over the hierarchy's threads in stages of cells
+/// that share no triangle (`stages`), with the moves of the sweep cell by cell.
 pub(super) fn settle_contested(
     h: &Hierarchy,
     mesh: &mut TriMesh,
@@ -225,42 +226,130 @@ pub(super) fn settle_contested(
             || orient2d(c[0], c[1], c[2]) <= 0.0
             || (!filter.clearly_within(&c) && angle_margin(c) < -slack)
     };
-    // Per triangle: 0 not around a cell, 1 fine, 2 flagged.
-    let mut flagged = vec![0u8; mesh.triangles.len()];
-    for &t in &incident_tris {
-        if flagged[t] == 0 {
-            flagged[t] = 1 + flag(mesh, t) as u8;
+    // Per triangle: 0 not around a cell, 1 fine, 2 flagged. Few cells' triangles are flagged
+    // one by one; many (the second pass: most of the mesh) over the threads, in ranges of
+    // triangles concatenated in order.
+    let mut flagged: Vec<u8> = if incident_tris.len() < mesh.triangles.len() / 8 {
+        let mut flagged = vec![0u8; mesh.triangles.len()];
+        for &t in &incident_tris {
+            if flagged[t] == 0 {
+                flagged[t] = 1 + flag(mesh, t) as u8;
+            }
         }
-    }
-    let mut moves = Moves::default();
-    for _sweep in 0..6 {
-        let mut changed = false;
-        for (n, &(_, v, centre, radius)) in cells.iter().enumerate() {
-            if !incident(n).iter().any(|&t| flagged[t] == 2) {
-                continue;
-            }
-            let here = mesh.vertices[v];
-            let mut best_score = score(mesh, incident(n), v, here);
-            if best_score.bad == 0 && best_score.short == 0.0 {
-                continue;
-            }
-            let mut best = here;
-            for step in 0..=8 {
-                let rho = radius * step as f64 / 16.0;
-                for dir in 0..if step == 0 { 1 } else { 24 } {
-                    let a = (dir as f64 * 15.0).to_radians();
-                    let p = [centre[0] + rho * a.cos(), centre[1] + rho * a.sin()];
-                    let mut sc = score(mesh, incident(n), v, p);
-                    if better(mesh, incident(n), v, (&mut sc, p), (&mut best_score, best)) {
-                        (best_score, best) = (sc, p);
+        flagged
+    } else {
+        let view: &TriMesh = mesh;
+        ranges_in_parallel(h.threads(), view.triangles.len(), PARALLEL_MIN, |range| {
+            range
+                .map(|t| {
+                    let around = view.triangles[t]
+                        .iter()
+                        .any(|&v| cell_of[v as usize] != u32::MAX);
+                    if around {
+                        1 + flag(view, t) as u8
+                    } else {
+                        0
                     }
+                })
+                .collect::<Vec<u8>>()
+        })
+        .concat()
+    };
+    // Where cell n, one of whose triangles is flagged, goes in a sweep: its best candidate
+    // (`better`) under the places the sweep has reached, `None` when it stays.
+    let search = |mesh: &TriMesh, n: usize| -> Option<Point> {
+        let (_, v, centre, radius) = cells[n];
+        let here = mesh.vertices[v];
+        let mut best_score = score(mesh, incident(n), v, here);
+        if best_score.bad == 0 && best_score.short == 0.0 {
+            return None;
+        }
+        let mut best = here;
+        for step in 0..=8 {
+            let rho = radius * step as f64 / 16.0;
+            for dir in 0..if step == 0 { 1 } else { 24 } {
+                let a = (dir as f64 * 15.0).to_radians();
+                let p = [centre[0] + rho * a.cos(), centre[1] + rho * a.sin()];
+                let mut sc = score(mesh, incident(n), v, p);
+                if better(mesh, incident(n), v, (&mut sc, p), (&mut best_score, best)) {
+                    (best_score, best) = (sc, p);
                 }
             }
-            if best != here {
-                moves.make(mesh, v, best);
-                changed = true;
-                for &t in incident(n) {
-                    flagged[t] = 1 + flag(mesh, t) as u8;
+        }
+        (best != here).then_some(best)
+    };
+    // A sweep visits the cells in order, and each move is seen by the cells after it. A
+    // search reads only its cell's triangles and their flags, so a cell waits only for the
+    // cells before it that share a triangle with it: over threads, the cells go in stages
+    // (`stages`), a cell one stage after the last such cell, and the cells of a stage, which
+    // share no triangle, are searched side by side against the places the earlier stages
+    // left. The moves are those of the sequential sweep, for any number of threads.
+    let threads = h.threads();
+    let stages = if threads > 1 {
+        stages(cells.len(), &incident, mesh.triangles.len())
+    } else {
+        // One thread: one stage, visited cell by cell.
+        vec![(0..cells.len() as u32).collect()]
+    };
+    // Whether a cell's flags may have changed since it was last found without a flagged
+    // triangle: only a move of a cell sharing a triangle changes them, so the later sweeps
+    // look only at the cells near the moves.
+    let mut look = vec![true; cells.len()];
+    let mut moves = Moves::default();
+    // Moves cell n to `best`, refreshing the flags of its triangles and marking the cells
+    // that share them.
+    let mut apply = |mesh: &mut TriMesh, flagged: &mut [u8], look: &mut [bool], n: usize, best| {
+        moves.make(mesh, cells[n].1, best);
+        for &t in incident(n) {
+            flagged[t] = 1 + flag(mesh, t) as u8;
+            for &w in &mesh.triangles[t] {
+                if let Some(l) = look.get_mut(cell_of[w as usize] as usize) {
+                    *l = true;
+                }
+            }
+        }
+    };
+    let wanted = |flagged: &[u8], look: &mut [bool], n: usize| -> bool {
+        look[n] && {
+            look[n] = incident(n).iter().any(|&t| flagged[t] == 2);
+            look[n]
+        }
+    };
+    for _sweep in 0..6 {
+        let mut changed = false;
+        for stage in &stages {
+            if threads < 2 {
+                for &n in stage {
+                    let n = n as usize;
+                    if wanted(&flagged, &mut look, n) {
+                        if let Some(best) = search(mesh, n) {
+                            apply(mesh, &mut flagged, &mut look, n, best);
+                            changed = true;
+                        }
+                    }
+                }
+                continue;
+            }
+            // The cells of the stage with a flagged triangle, as the sequential sweep finds
+            // them at each one's turn.
+            let mut active: Vec<usize> = Vec::new();
+            for &n in stage {
+                if wanted(&flagged, &mut look, n as usize) {
+                    active.push(n as usize);
+                }
+            }
+            let view: &TriMesh = mesh;
+            // Searches differ several times in cost (a cell with more bad triangles scores
+            // more of its places): they are handed out one at a time.
+            let places: Vec<Option<Point>> = if active.len() < SETTLE_PARALLEL_MIN {
+                active.iter().map(|&n| search(view, n)).collect()
+            } else {
+                each_in_parallel(threads, &active, |&n| search(view, n))
+            };
+            for (&n, place) in active.iter().zip(places) {
+                if let Some(best) = place {
+                    apply(mesh, &mut flagged, &mut look, n, best);
+                    changed = true;
                 }
             }
         }
@@ -269,6 +358,36 @@ pub(super) fn settle_contested(
         }
     }
     moves
+}
+
+/// Stages of a sweep with at least this many cells to search are searched over threads: a
+/// search scores 193 places, so that a few hundred are worth a thread.
+const SETTLE_PARALLEL_MIN: usize = 256;
+
+/// The stages of a sweep over `cells` cells (`settle_contested`), whose triangles (of
+/// `triangles` in all) are `incident(n)`: each cell, in order, goes one stage after the latest
+/// stage of an earlier cell sharing a triangle with it (the first stage when none does), and
+/// each stage lists its cells in order. No two cells of a stage share a triangle, and a cell
+/// comes after every earlier cell it shares a triangle with.
+fn stages<'a>(
+    cells: usize,
+    incident: &impl Fn(usize) -> &'a [usize],
+    triangles: usize,
+) -> Vec<Vec<u32>> {
+    // Per triangle: one more than the latest stage of a cell met so far around it (0: none).
+    let mut after = vec![0u32; triangles];
+    let mut stages: Vec<Vec<u32>> = Vec::new();
+    for n in 0..cells {
+        let stage = incident(n).iter().map(|&t| after[t]).max().unwrap_or(0);
+        for &t in incident(n) {
+            after[t] = stage + 1;
+        }
+        if stages.len() <= stage as usize {
+            stages.push(Vec::new());
+        }
+        stages[stage as usize].push(n as u32);
+    }
+    stages
 }
 
 /// The last local search before a subdivision (departure from Sec. 5.4, as
@@ -508,4 +627,56 @@ pub(super) struct Score {
     pen: f64,
     /// The smallest angle margin (`angle_margin`), when measured.
     worst: Option<f64>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::stages;
+
+    #[test]
+    fn a_stage_holds_no_two_cells_sharing_a_triangle_and_follows_every_earlier_neighbour() {
+        // 400 cells with 3 to 8 triangles each among 60, from a fixed xorshift sequence:
+        // dense enough that most cells share triangles and chains of stages form.
+        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut next = |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % m) as usize
+        };
+        let around: Vec<Vec<usize>> = (0..400)
+            .map(|_| (0..3 + next(6)).map(|_| next(60)).collect())
+            .collect();
+        let incident = |n: usize| around[n].as_slice();
+        let stages = stages(around.len(), &incident, 60);
+        let mut stage_of = vec![usize::MAX; around.len()];
+        for (s, cells) in stages.iter().enumerate() {
+            assert!(
+                cells.windows(2).all(|w| w[0] < w[1]),
+                "stage {s} out of order"
+            );
+            for &n in cells {
+                assert_eq!(stage_of[n as usize], usize::MAX, "cell {n} in two stages");
+                stage_of[n as usize] = s;
+            }
+        }
+        assert!(
+            stage_of.iter().all(|&s| s != usize::MAX),
+            "a cell in no stage"
+        );
+        assert!(stages.len() > 5, "too few stages to test: {}", stages.len());
+        let share = |m: usize, n: usize| around[m].iter().any(|t| around[n].contains(t));
+        for n in 0..around.len() {
+            let earlier: Vec<usize> = (0..n).filter(|&m| share(m, n)).collect();
+            for &m in &earlier {
+                assert!(
+                    stage_of[m] < stage_of[n],
+                    "cell {n} not after its neighbour {m}"
+                );
+            }
+            // No later than it must be: one after its latest earlier neighbour.
+            let want = earlier.iter().map(|&m| stage_of[m] + 1).max().unwrap_or(0);
+            assert_eq!(stage_of[n], want, "cell {n}");
+        }
+    }
 }

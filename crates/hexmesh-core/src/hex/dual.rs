@@ -228,39 +228,38 @@ fn emit_split<'a>(h: &'a Hierarchy, mut b: Builder<'a>, wanted: &FxHashSet<Key>)
         .map(|c| c.k)
         .max()
         .unwrap_or(0);
-    // The subtrees go in waves, each split over the threads and absorbed before the next
-    // starts: only one wave's parts are alive beside the growing builder (with all parts at
-    // once, the last one alone was about 23 bytes a triangle beside the whole builder at
+    // The parts are made over the threads and absorbed in order as they come, while the
+    // threads make the next ones (`each_in_order`). They look vertices up in the index as it
+    // was before any part: a vertex that an earlier part added lies on the lattice lines,
+    // where `absorb` finds it. Parts are made at most a sixteenth of the subtrees ahead of the
+    // one absorbed, so that few are alive beside the growing builder (with all parts at once,
+    // the last one alone was about 23 bytes a triangle beside the whole builder at
     // plane-100k).
-    let wave = items.len().div_ceil(PARALLEL_WAVES).max(1);
+    let window = items.len().div_ceil(PARALLEL_WINDOWS).max(1);
+    let base = b.frozen();
     // Each part's share of the full leaves, if the subtrees share them evenly, with room for
     // an uneven split: reserved but untouched room costs no memory.
     let per_item = h.full_leaves.div_ceil(items.len().max(1));
-    for items in items.chunks(wave) {
-        let base = &b;
-        // One part a subtree, handed out to the threads as they come free: the subtrees of
-        // a wave differ several times in size, and halves of a wave kept one thread waiting.
-        // A vertex two parts share lies on the lattice lines (`on_lines`), where `absorb`
-        // finds it in the index whichever parts met it.
-        let leaves = per_item * 5 / 4;
-        let parts = crate::hex::parallel::each_in_parallel(h.threads(), items, |item| {
-            let mut part = Part {
-                index: KeyIndex::with_capacity(leaves),
-                vertices: Vec::with_capacity(leaves),
-                triangles: Vec::with_capacity(2 * leaves),
-            };
-            match *item {
-                Item::Emit(tri) => part.emit(base, tri),
-                Item::Descend(tri) => descend(h, vec![tri], &|_| true, &mut |t| part.emit(base, t)),
-            }
-            // Only the vertices and triangles are merged.
-            part.index = KeyIndex::default();
-            part
-        });
-        for part in parts {
-            b.absorb(part, |key| on_lines(key, finest) || wanted.contains(&key));
+    let leaves = per_item * 5 / 4;
+    // One part a subtree, handed out to the threads as they come free: the subtrees differ
+    // several times in size.
+    let make = |item: &Item| {
+        let mut part = Part {
+            index: KeyIndex::with_capacity(leaves),
+            vertices: Vec::with_capacity(leaves),
+            triangles: Vec::with_capacity(2 * leaves),
+        };
+        match *item {
+            Item::Emit(tri) => part.emit(&base, tri),
+            Item::Descend(tri) => descend(h, vec![tri], &|_| true, &mut |t| part.emit(&base, t)),
         }
-    }
+        // Only the vertices and triangles are merged.
+        part.index = KeyIndex::default();
+        part
+    };
+    crate::hex::parallel::each_in_order(h.threads(), &items, window, make, |part| {
+        b.absorb(part, |key| on_lines(key, finest) || wanted.contains(&key))
+    });
     b
 }
 
@@ -270,8 +269,9 @@ const PARALLEL_EXTRACT_MIN: usize = 1 << 16;
 /// `extract_all` expands the first levels until this many subtrees are pending.
 const PARALLEL_SUBTREES: usize = 1024;
 
-/// `extract_all` meets the subtrees in this many waves (`extract_all_from`).
-const PARALLEL_WAVES: usize = 16;
+/// `extract_all` makes the parts of its subtrees at most one in this many of them ahead of
+/// the part it absorbs (`emit_split`).
+const PARALLEL_WINDOWS: usize = 16;
 
 /// A lattice triangle of the recursion with whether each of its hexagons is subdivided
 /// (outside counts as subdivided).
@@ -510,6 +510,26 @@ impl<'a> Builder<'a> {
         }
     }
 
+    /// A builder that only looks up and places (`Part::emit`): the same sources of places and
+    /// dropped centres, and a copy of the index as it is now (at the start of `emit_split`,
+    /// the input points and the dropped centres), with nothing emitted.
+    fn frozen(&self) -> Builder<'a> {
+        Builder {
+            h: self.h,
+            placed: self.placed,
+            moved: self.moved,
+            relocate: self.relocate,
+            dropped: self.dropped,
+            marked: self.marked,
+            keys: Vec::new(),
+            index: self.index.clone(),
+            vertices: Vec::new(),
+            triangles: Vec::new(),
+            used: Vec::new(),
+            points_met: None,
+        }
+    }
+
     /// True when the triangle with canonical keys `keys` (found in the index as `found`)
     /// lies around a dropped centre, so that the patch replaces it.
     fn is_dropped(&self, keys: &[Key; 3], found: &[Option<u32>; 3]) -> bool {
@@ -726,7 +746,7 @@ struct Part {
 }
 
 impl Part {
-    /// `Builder::emit` against the builder's index as it was before any part.
+    /// `Builder::emit` against the builder's index as it was before any part (`frozen`).
     fn emit(&mut self, base: &Builder, tri: [Key; 3]) {
         let Some((keys, found)) = base.lookup(tri) else {
             return;

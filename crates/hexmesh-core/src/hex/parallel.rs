@@ -107,6 +107,120 @@ pub(crate) fn each_in_parallel<T: Sync, R: Send>(
     all.into_iter().map(|d| d.1).collect()
 }
 
+/// `make` on each of `items` over `threads` threads, each result handed to `take` on the
+/// calling thread in the order of the items, while the other threads make the next ones: the
+/// ordered, serial part (`take`) overlaps the parallel one. No result is made more than
+/// `window` items ahead of the next one taken, so at most about `window` results wait at once.
+/// The calling thread makes items too while the next one to take is not ready.
+pub(crate) fn each_in_order<T: Sync, R: Send>(
+    threads: usize,
+    items: &[T],
+    window: usize,
+    make: impl Fn(&T) -> R + Sync,
+    mut take: impl FnMut(R),
+) {
+    use std::collections::BTreeMap;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    use std::sync::{Condvar, Mutex, PoisonError};
+
+    if threads < 2 || items.len() < 2 {
+        items.iter().for_each(|item| take(make(item)));
+        return;
+    }
+    let window = window.max(1);
+    /// The results made and not yet taken, how many are taken, and whether a thread failed.
+    struct Shared<R> {
+        ready: BTreeMap<usize, R>,
+        taken: usize,
+        failed: bool,
+    }
+    let shared = Mutex::new(Shared {
+        ready: BTreeMap::new(),
+        taken: 0,
+        failed: false,
+    });
+    let changed = Condvar::new();
+    let next = AtomicUsize::new(0);
+    // The next item to make, if it lies within the window of the next one to take.
+    let claim = |taken: usize| -> Option<usize> {
+        let mut i = next.load(Ordering::Relaxed);
+        while i < items.len() && i < taken + window {
+            match next.compare_exchange(i, i + 1, Ordering::Relaxed, Ordering::Relaxed) {
+                Ok(_) => return Some(i),
+                Err(now) => i = now,
+            }
+        }
+        None
+    };
+    let lock = || shared.lock().unwrap_or_else(PoisonError::into_inner);
+    // A thread whose `make` panics says so, so that nobody waits for its result; the scope
+    // then passes the panic on.
+    struct OnPanic<'s, R>(&'s Mutex<Shared<R>>, &'s Condvar, &'s AtomicUsize, usize);
+    impl<R> Drop for OnPanic<'_, R> {
+        fn drop(&mut self) {
+            if std::thread::panicking() {
+                self.2.store(self.3, Ordering::Relaxed);
+                self.0.lock().unwrap_or_else(PoisonError::into_inner).failed = true;
+                self.1.notify_all();
+            }
+        }
+    }
+    let worker = || {
+        let _guard = OnPanic(&shared, &changed, &next, items.len());
+        loop {
+            let i = {
+                let mut s = lock();
+                loop {
+                    if s.failed || next.load(Ordering::Relaxed) >= items.len() {
+                        return;
+                    }
+                    if let Some(i) = claim(s.taken) {
+                        break i;
+                    }
+                    s = changed.wait(s).unwrap_or_else(PoisonError::into_inner);
+                }
+            };
+            let r = make(&items[i]);
+            lock().ready.insert(i, r);
+            changed.notify_all();
+        }
+    };
+    std::thread::scope(|scope| {
+        let worker = &worker;
+        for _ in 1..threads.min(items.len()) {
+            scope.spawn(worker);
+        }
+        let _guard = OnPanic(&shared, &changed, &next, items.len());
+        let mut k = 0;
+        while k < items.len() {
+            let (ready, mine) = {
+                let mut s = lock();
+                if s.failed {
+                    return;
+                }
+                match s.ready.remove(&k) {
+                    Some(r) => (Some(r), None),
+                    None => (None, claim(k)),
+                }
+            };
+            if let Some(r) = ready {
+                take(r);
+                k += 1;
+                lock().taken = k;
+                changed.notify_all();
+            } else if let Some(i) = mine {
+                let r = make(&items[i]);
+                lock().ready.insert(i, r);
+            } else {
+                let mut s = lock();
+                while !s.failed && !s.ready.contains_key(&k) {
+                    s = changed.wait(s).unwrap_or_else(PoisonError::into_inner);
+                }
+            }
+        }
+    });
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -154,5 +268,58 @@ mod tests {
             );
         }
         assert!(each_in_parallel(3, &items[..0], cost).is_empty());
+    }
+
+    #[test]
+    fn results_are_taken_in_item_order_never_more_than_a_window_ahead() {
+        let items: Vec<u64> = (0..300).map(|i| (i * 7919) % 50).collect();
+        let cost = |&n: &u64| (0..n * 1000).fold(n, |a, x| a.wrapping_mul(31).wrapping_add(x));
+        let serial: Vec<u64> = items.iter().map(cost).collect();
+        for threads in 1..=5 {
+            for window in [1, 3, 40, 1000] {
+                let made = std::sync::atomic::AtomicUsize::new(0);
+                let mut taken = Vec::new();
+                let mut ahead = 0;
+                each_in_order(
+                    threads,
+                    &items,
+                    window,
+                    |n| {
+                        made.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+                        cost(n)
+                    },
+                    |r| {
+                        taken.push(r);
+                        // Made and not yet taken, this one included.
+                        let waiting =
+                            made.load(std::sync::atomic::Ordering::SeqCst) - (taken.len() - 1);
+                        ahead = ahead.max(waiting);
+                    },
+                );
+                assert_eq!(taken, serial, "{threads} threads, window {window}");
+                assert!(
+                    ahead <= window,
+                    "{threads} threads, window {window}: {ahead}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_panic_in_make_reaches_the_caller_instead_of_hanging() {
+        let items: Vec<u32> = (0..100).collect();
+        let run = std::panic::catch_unwind(|| {
+            each_in_order(
+                3,
+                &items,
+                4,
+                |&n| {
+                    assert_ne!(n, 37, "item 37");
+                    n
+                },
+                |_| {},
+            )
+        });
+        assert!(run.is_err());
     }
 }

@@ -129,3 +129,22 @@ fn refinement_ends_with_each_point_alone_in_a_ring_of_empty_full_hexagons() {
     h.check_invariants().unwrap();
     h.check_refined().unwrap();
 }
+
+#[test]
+fn the_central_leaves_are_the_full_leaves_that_are_central_children_in_the_same_order() {
+    let pts: Vec<[f64; 2]> = (0..400)
+        .map(|t| {
+            let s = t as f64 * 0.618_033_988_749_895;
+            [s.fract() * 0.9, (s * 1.7).fract() * 0.4]
+        })
+        .collect();
+    let (h, _) = mesh_with_hierarchy(&Pslg::from_points(pts), &Params::default()).unwrap();
+    // A central child (k + 1, 2i, 2j) has both coordinates even; an edge child has one odd.
+    let from_all: Vec<Key> = h
+        .full_leaves_iter()
+        .filter(|c| c.k > 0 && c.i % 2 == 0 && c.j % 2 == 0)
+        .collect();
+    let central: Vec<Key> = h.central_leaves_iter().collect();
+    assert!(central.len() > 1000, "{}", central.len());
+    assert_eq!(central, from_all);
+}

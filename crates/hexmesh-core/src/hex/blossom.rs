@@ -29,6 +29,7 @@
 use crate::hex::classify::{classify, Class, Rings};
 use crate::hex::lattice::Key;
 use crate::hex::mc3;
+use crate::hex::parallel::in_parallel;
 use crate::hex::subdivision::Hierarchy;
 
 /// The cells within lattice distance `radius` of `c`, at its level.
@@ -80,15 +81,24 @@ pub fn coarsen(h: &mut Hierarchy, r: &Rings, tops: &[Key]) -> Vec<Key> {
 }
 
 /// The subdivided hexagons whose central child is a full leaf of class FIXED_CENTER_REGULAR:
-/// the only possible blossom tops, found from the leaves of the hierarchy.
+/// the only possible blossom tops, found from the leaves of the hierarchy, in their order.
+/// The leaves that are central children are listed, then classified over the hierarchy's
+/// threads (at plane-100k a million of them, half a second on one thread).
 pub fn candidate_tops(h: &Hierarchy, r: &Rings, leaves: impl IntoIterator<Item = Key>) -> Vec<Key> {
-    leaves
+    let tops: Vec<Key> = leaves
         .into_iter()
         .filter(|c| c.k > 0 && c.i % 2 == 0 && c.j % 2 == 0)
         .map(|c| Key::new(c.k - 1, c.i / 2, c.j / 2))
-        .filter(|t| {
-            let c = t.central_child();
-            h.is_full_leaf(c) && classify(h, r, c).0 == Class::FixedCenterRegular
-        })
-        .collect()
+        .collect();
+    in_parallel(h.threads(), &tops, |chunk| {
+        chunk
+            .iter()
+            .copied()
+            .filter(|t| {
+                let c = t.central_child();
+                h.is_full_leaf(c) && classify(h, r, c).0 == Class::FixedCenterRegular
+            })
+            .collect::<Vec<Key>>()
+    })
+    .concat()
 }

@@ -618,6 +618,16 @@ impl Hierarchy {
         children.chain(root)
     }
 
+    /// The full leaves that are central children (of a subdivided hexagon), in the order of
+    /// `full_leaves_iter`: one look-up per subdivided hexagon, where `full_leaves_iter` also
+    /// finds the edge children.
+    pub fn central_leaves_iter(&self) -> impl Iterator<Item = Key> + '_ {
+        self.subdivided
+            .iter()
+            .map(Key::central_child)
+            .filter(move |c| !self.subdivided.contains(c))
+    }
+
     /// Every leaf inside the root: full unsubdivided hexagons and semi-hexagons, sorted.
     ///
     /// Every subdivided hexagon is a full hexagon (`check_invariants`), so the leaves are the

@@ -218,10 +218,12 @@ impl<'a> Repair<'a> {
         self.coarsened = true;
         // The rings are read in place (the coarsening changes the hierarchy, not the cache),
         // and the full leaves one at a time: at plane-100k a copy of the rings and a list of
-        // the leaves were about 13 and 12 bytes an output triangle.
+        // the leaves were about 13 and 12 bytes an output triangle (the central ones listed
+        // by `candidate_tops` are a fifth of them).
         let r = self.cache.get(self.h);
         let h = &*self.h;
-        let tops = blossom::candidate_tops(h, r, h.full_leaves_iter());
+        // Only central children can be the central child of a top.
+        let tops = blossom::candidate_tops(h, r, h.central_leaves_iter());
         let merged = blossom::coarsen(self.h, r, &tops);
         self.stats.blossoms += merged.len() as u64 / 7;
         if merged.is_empty() {

@@ -131,20 +131,30 @@ fn refinement_ends_with_each_point_alone_in_a_ring_of_empty_full_hexagons() {
 }
 
 #[test]
-fn the_central_leaves_are_the_full_leaves_that_are_central_children_in_the_same_order() {
-    let pts: Vec<[f64; 2]> = (0..400)
+fn the_leaves_listed_over_threads_and_the_central_leaves_come_in_the_order_of_the_iterator() {
+    // Enough points that the subdivided set has more than the 1,024 blocks from which
+    // `full_leaves_where` splits them over threads.
+    let pts: Vec<[f64; 2]> = (0..6000)
         .map(|t| {
             let s = t as f64 * 0.618_033_988_749_895;
             [s.fract() * 0.9, (s * 1.7).fract() * 0.4]
         })
         .collect();
-    let (h, _) = mesh_with_hierarchy(&Pslg::from_points(pts), &Params::default()).unwrap();
+    let params = Params::default().with_threads(std::num::NonZeroUsize::new(3).unwrap());
+    let (h, _) = mesh_with_hierarchy(&Pslg::from_points(pts), &params).unwrap();
+    let all: Vec<Key> = h.full_leaves_iter().collect();
+    assert_eq!(all.len(), h.full_leaves);
+    assert_eq!(h.full_leaves_where(|_| true), all);
+    let odd = |c: &Key| (c.i + c.j) % 3 == 1;
+    let some: Vec<Key> = all.iter().copied().filter(odd).collect();
+    assert_eq!(h.full_leaves_where(|c| odd(&c)), some);
     // A central child (k + 1, 2i, 2j) has both coordinates even; an edge child has one odd.
-    let from_all: Vec<Key> = h
-        .full_leaves_iter()
+    let from_all: Vec<Key> = all
+        .iter()
+        .copied()
         .filter(|c| c.k > 0 && c.i % 2 == 0 && c.j % 2 == 0)
         .collect();
     let central: Vec<Key> = h.central_leaves_iter().collect();
-    assert!(central.len() > 1000, "{}", central.len());
+    assert!(central.len() > 10_000, "{}", central.len());
     assert_eq!(central, from_all);
 }

@@ -591,31 +591,63 @@ impl Hierarchy {
     /// The full unsubdivided hexagons inside the root, in no particular order (the order of
     /// the subdivided set): for callers whose result does not depend on it.
     pub fn full_leaves_unordered(&self) -> Vec<Key> {
-        let mut out = Vec::with_capacity(self.full_leaves + 1);
-        out.extend(self.full_leaves_iter());
-        out
+        self.full_leaves_where(|_| true)
     }
 
     /// The keys of `full_leaves_unordered`, one at a time (no list of them all).
     pub fn full_leaves_iter(&self) -> impl Iterator<Item = Key> + '_ {
-        let children = self.subdivided.iter().flat_map(move |key| {
-            let c = key.central_child();
-            let central = (!self.subdivided.contains(&c)).then_some(c);
-            let edges = (0..6).filter_map(move |d| {
-                let e = key.edge_child(d);
-                if !e.inside() {
-                    return None;
-                }
-                let n = key.neighbor(d);
-                (self.is_subdivided_or_outside(n)
-                    && (!n.inside() || key.packed() < n.packed())
-                    && !self.subdivided.contains(&e))
-                .then_some(e)
-            });
-            central.into_iter().chain(edges)
-        });
+        let children = self
+            .subdivided
+            .iter()
+            .flat_map(move |key| self.full_children(key));
         let root = (!self.subdivided.contains(&Key::ROOT)).then_some(Key::ROOT);
         children.chain(root)
+    }
+
+    /// The full leaves for which `keep` holds, in the order of `full_leaves_iter`, found over
+    /// the hierarchy's threads in runs of the subdivided set's blocks (at plane-100k, 5.6 M
+    /// leaves took a quarter of a second on one thread).
+    pub fn full_leaves_where(&self, keep: impl Fn(Key) -> bool + Sync) -> Vec<Key> {
+        let blocks: Vec<(Key, u64)> = self.subdivided.blocks().collect();
+        let parts = crate::hex::parallel::in_parallel_from(self.threads, &blocks, 1024, |run| {
+            let mut out = Vec::new();
+            for &(block, word) in run {
+                for n in (0..64).filter(|n| word & (1u64 << n) != 0) {
+                    let key = KeySet::cell_in_block(block, n);
+                    out.extend(self.full_children(key).filter(|&c| keep(c)));
+                }
+            }
+            out
+        });
+        let mut out = Vec::with_capacity(parts.iter().map(Vec::len).sum::<usize>() + 1);
+        for part in parts {
+            out.extend(part);
+        }
+        if !self.subdivided.contains(&Key::ROOT) && keep(Key::ROOT) {
+            out.push(Key::ROOT);
+        }
+        out
+    }
+
+    /// The children of the subdivided hexagon `key` that are full leaves, each named by one
+    /// parent: its central child unless subdivided, and each edge child inside the root that
+    /// is a full hexagon (the neighbour across the edge subdivided too, or outside) and not
+    /// subdivided, named by the parent of the two with the lower packed key.
+    fn full_children(&self, key: Key) -> impl Iterator<Item = Key> + '_ {
+        let c = key.central_child();
+        let central = (!self.subdivided.contains(&c)).then_some(c);
+        let edges = (0..6).filter_map(move |d| {
+            let e = key.edge_child(d);
+            if !e.inside() {
+                return None;
+            }
+            let n = key.neighbor(d);
+            (self.is_subdivided_or_outside(n)
+                && (!n.inside() || key.packed() < n.packed())
+                && !self.subdivided.contains(&e))
+            .then_some(e)
+        });
+        central.into_iter().chain(edges)
     }
 
     /// The full leaves that are central children (of a subdivided hexagon), in the order of

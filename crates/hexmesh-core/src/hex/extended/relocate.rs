@@ -69,17 +69,11 @@ pub fn relocations_of(
 /// whole table and the patch's triangles were about 15 and 6 bytes an output triangle at the
 /// peak.
 pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch, Vec<Chain>) {
-    let leaves: Vec<Key> = h.full_leaves_unordered();
-    let parts = in_parallel(h.threads(), &leaves, |chunk| {
-        // Only a hexagon with fins can be MOVED_CENTER_3 (`classify` reads its fins first).
-        let chained = |&key: &Key| {
-            let mask = fin_mask(h, key);
-            mask != 0 && fin_class(mask).0 == Class::MovedCenter3
-        };
-        chunk.iter().copied().filter(chained).collect::<Vec<Key>>()
+    // Only a hexagon with fins can be MOVED_CENTER_3 (`classify` reads its fins first).
+    let mc3_keys: Vec<Key> = h.full_leaves_where(|key| {
+        let mask = fin_mask(h, key);
+        mask != 0 && fin_class(mask).0 == Class::MovedCenter3
     });
-    drop(leaves);
-    let mc3_keys: Vec<Key> = parts.into_iter().flatten().collect();
     let mut moved = FxHashMap::default();
     let mut patch = Patch::default();
     let chains = mc3::chains(h, r, &mc3_keys);

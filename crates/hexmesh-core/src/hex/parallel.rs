@@ -1,7 +1,9 @@
 //! Long lists of independent work split over threads, with results in the order of the list
 //! (so they do not depend on the split): engineering, not in paper 000. Used by the extended
-//! rules, relocations and self-check (`extended`) and by the dual (`dual`), with the thread
-//! count of the hierarchy (`Hierarchy::threads`, from `Params::threads`).
+//! rules, relocations, coarsening and self-check (`extended`, `blossom`), the dual (`dual`)
+//! and the hierarchy's lists of leaves (`subdivision`), with the thread count of the
+//! hierarchy (`Hierarchy::threads`, from `Params::threads`). `each_in_order` also overlaps an
+//! ordered serial step (a merge) with the making of the next items.
 
 /// Lists of at least this many items are split over threads by `in_parallel`.
 pub(crate) const PARALLEL_MIN: usize = 8192;

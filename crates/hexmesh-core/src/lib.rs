@@ -83,6 +83,8 @@ pub mod progress;
 pub mod quality;
 pub mod registry;
 mod shuffle;
+#[cfg(test)]
+mod xorshift;
 
 pub mod internals;
 use internals::{hex, refine, rhomb};

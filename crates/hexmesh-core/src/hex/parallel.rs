@@ -256,11 +256,19 @@ mod tests {
         }
     }
 
+    /// `n` items of uneven costs (`cost`), so that threads finish them out of order.
+    fn uneven(n: u64) -> Vec<u64> {
+        (0..n).map(|i| (i * 7919) % 50).collect()
+    }
+
+    /// Work of about a thousand steps per unit of `n`.
+    fn cost(&n: &u64) -> u64 {
+        (0..n * 1000).fold(n, |a, x| a.wrapping_mul(31).wrapping_add(x))
+    }
+
     #[test]
     fn items_handed_out_one_at_a_time_come_back_in_their_order() {
-        // Uneven costs, so that the threads finish items out of order.
-        let items: Vec<u64> = (0..200).map(|i| (i * 7919) % 50).collect();
-        let cost = |&n: &u64| (0..n * 1000).fold(n, |a, x| a.wrapping_mul(31).wrapping_add(x));
+        let items = uneven(200);
         let serial: Vec<u64> = items.iter().map(cost).collect();
         for threads in 1..=5 {
             assert_eq!(
@@ -274,8 +282,7 @@ mod tests {
 
     #[test]
     fn results_are_taken_in_item_order_never_more_than_a_window_ahead() {
-        let items: Vec<u64> = (0..300).map(|i| (i * 7919) % 50).collect();
-        let cost = |&n: &u64| (0..n * 1000).fold(n, |a, x| a.wrapping_mul(31).wrapping_add(x));
+        let items = uneven(300);
         let serial: Vec<u64> = items.iter().map(cost).collect();
         for threads in 1..=5 {
             for window in [1, 3, 40, 1000] {

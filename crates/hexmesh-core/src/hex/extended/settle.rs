@@ -640,18 +640,14 @@ pub(super) struct Score {
 #[cfg(test)]
 mod tests {
     use super::stages;
+    use crate::xorshift::XorShift;
 
     #[test]
     fn a_stage_holds_no_two_cells_sharing_a_triangle_and_follows_every_earlier_neighbour() {
         // 400 cells with 3 to 8 triangles each among 60, from a fixed xorshift sequence:
         // dense enough that most cells share triangles and chains of stages form.
-        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % m) as usize
-        };
+        let mut x = XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |m: u64| x.below(m) as usize;
         let around: Vec<Vec<usize>> = (0..400)
             .map(|_| (0..3 + next(6)).map(|_| next(60)).collect())
             .collect();

@@ -118,6 +118,7 @@ pub(crate) fn topology(mesh: &TriMesh) -> Topology {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::xorshift::XorShift;
 
     /// The edge structure by sorting every edge by (lower, higher, triangle, forward): what
     /// `topology` computes without the sort.
@@ -170,13 +171,8 @@ mod tests {
 
     #[test]
     fn the_bucketed_edges_are_those_of_sorting_every_edge() {
-        let mut x: u64 = 0x2545_f491_4f6c_dd1d;
-        let mut next = |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % m) as u32
-        };
+        let mut x = XorShift::new(0x2545_f491_4f6c_dd1d);
+        let mut next = |m: u64| x.below(m) as u32;
         let mut kinds = [0usize; 4];
         for case in 0..300 {
             // Few vertices, so that edges are shared, shared the same way and overused; an

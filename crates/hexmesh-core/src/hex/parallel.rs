@@ -69,6 +69,39 @@ pub(crate) fn ranges_in_parallel<R: Send>(
     })
 }
 
+/// Sets `out[i] = f(i)` for every index, over `threads` threads in consecutive ranges when
+/// `out` has at least `min` entries: `ranges_in_parallel` without a list of parts to join
+/// (for a result of one entry a triangle, a second copy of it).
+pub(crate) fn fill_in_parallel<R: Send>(
+    threads: usize,
+    out: &mut [R],
+    min: usize,
+    f: impl Fn(usize) -> R + Sync,
+) {
+    if threads < 2 || out.len() < min.max(2) {
+        out.iter_mut().enumerate().for_each(|(i, r)| *r = f(i));
+        return;
+    }
+    let size = out.len().div_ceil(threads);
+    std::thread::scope(|scope| {
+        let f = &f;
+        let mut chunks = out.chunks_mut(size).enumerate();
+        let first = chunks.next();
+        for (c, chunk) in chunks {
+            scope.spawn(move || {
+                for (i, r) in chunk.iter_mut().enumerate() {
+                    *r = f(c * size + i);
+                }
+            });
+        }
+        if let Some((_, chunk)) = first {
+            for (i, r) in chunk.iter_mut().enumerate() {
+                *r = f(i);
+            }
+        }
+    });
+}
+
 /// `f` on each of `items`, handed out one at a time to `threads` threads as each finishes
 /// its last, so that items of uneven cost share out evenly; the results in the order of the
 /// items.
@@ -264,6 +297,21 @@ mod tests {
     /// Work of about a thousand steps per unit of `n`.
     fn cost(&n: &u64) -> u64 {
         (0..n * 1000).fold(n, |a, x| a.wrapping_mul(31).wrapping_add(x))
+    }
+
+    #[test]
+    fn every_entry_is_filled_with_its_own_index_s_value() {
+        for n in [0, 1, 2, 9, 100, 101] {
+            for threads in 1..=4 {
+                let mut out = vec![0usize; n];
+                fill_in_parallel(threads, &mut out, 2, |i| 3 * i + 1);
+                assert_eq!(
+                    out,
+                    (0..n).map(|i| 3 * i + 1).collect::<Vec<_>>(),
+                    "{n} {threads}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -9,7 +9,9 @@ use crate::geom::angle_deg;
 use crate::geom::{orient2d, Point};
 use crate::hex::classify::Rings;
 use crate::hex::lattice::{FxHashMap, Key, KeyBytes};
-use crate::hex::parallel::{each_in_parallel, in_parallel, ranges_in_parallel, PARALLEL_MIN};
+use crate::hex::parallel::{
+    each_in_parallel, fill_in_parallel, in_parallel, ranges_in_parallel, PARALLEL_MIN,
+};
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
 use crate::quality::HEX;
@@ -228,7 +230,7 @@ pub(super) fn settle_contested(
     };
     // Per triangle: 0 not around a cell, 1 fine, 2 flagged. Few cells' triangles are flagged
     // one by one; many (the second pass: most of the mesh) over the threads, in ranges of
-    // triangles concatenated in order.
+    // triangles.
     let mut flagged: Vec<u8> = if incident_tris.len() < mesh.triangles.len() / 8 {
         let mut flagged = vec![0u8; mesh.triangles.len()];
         for &t in &incident_tris {
@@ -239,21 +241,18 @@ pub(super) fn settle_contested(
         flagged
     } else {
         let view: &TriMesh = mesh;
-        ranges_in_parallel(h.threads(), view.triangles.len(), PARALLEL_MIN, |range| {
-            range
-                .map(|t| {
-                    let around = view.triangles[t]
-                        .iter()
-                        .any(|&v| cell_of[v as usize] != u32::MAX);
-                    if around {
-                        1 + flag(view, t) as u8
-                    } else {
-                        0
-                    }
-                })
-                .collect::<Vec<u8>>()
-        })
-        .concat()
+        let mut flagged = vec![0u8; view.triangles.len()];
+        fill_in_parallel(h.threads(), &mut flagged, PARALLEL_MIN, |t| {
+            let around = view.triangles[t]
+                .iter()
+                .any(|&v| cell_of[v as usize] != u32::MAX);
+            if around {
+                1 + flag(view, t) as u8
+            } else {
+                0
+            }
+        });
+        flagged
     };
     // Where cell n, one of whose triangles is flagged, goes in a sweep: its best candidate
     // (`better`) under the places the sweep has reached, `None` when it stays.
@@ -286,7 +285,16 @@ pub(super) fn settle_contested(
     // left. The moves are those of the sequential sweep, for any number of threads.
     let threads = h.threads();
     let stages = if threads > 1 {
-        stages(cells.len(), &incident, mesh.triangles.len())
+        let triangles = &mesh.triangles;
+        stages(cells.len(), |n, f| {
+            for &t in incident(n) {
+                for &w in &triangles[t] {
+                    if let Some(&m) = cell_of.get(w as usize).filter(|&&m| m != u32::MAX) {
+                        f(m as usize);
+                    }
+                }
+            }
+        })
     } else {
         // One thread: one stage, visited cell by cell.
         vec![(0..cells.len() as u32).collect()]
@@ -364,24 +372,24 @@ pub(super) fn settle_contested(
 /// search scores 193 places, so that a few hundred are worth a thread.
 const SETTLE_PARALLEL_MIN: usize = 256;
 
-/// The stages of a sweep over `cells` cells (`settle_contested`), whose triangles (of
-/// `triangles` in all) are `incident(n)`: each cell, in order, goes one stage after the latest
-/// stage of an earlier cell sharing a triangle with it (the first stage when none does), and
-/// each stage lists its cells in order. No two cells of a stage share a triangle, and a cell
-/// comes after every earlier cell it shares a triangle with.
-fn stages<'a>(
-    cells: usize,
-    incident: &impl Fn(usize) -> &'a [usize],
-    triangles: usize,
-) -> Vec<Vec<u32>> {
-    // Per triangle: one more than the latest stage of a cell met so far around it (0: none).
-    let mut after = vec![0u32; triangles];
+/// The stages of a sweep over `cells` cells (`settle_contested`), where `sharing(n, f)` calls
+/// `f` with every cell that shares a triangle with cell n (n itself and repeats allowed):
+/// each cell, in order, goes one stage after the latest stage of an earlier cell sharing a
+/// triangle with it (the first stage when none does), and each stage lists its cells in
+/// order. No two cells of a stage share a triangle, and a cell comes after every earlier cell
+/// it shares a triangle with. One number a cell: a number a triangle was 4 bytes an output
+/// triangle, about 0.46 GB at plane-1m.
+fn stages(cells: usize, sharing: impl Fn(usize, &mut dyn FnMut(usize))) -> Vec<Vec<u32>> {
+    let mut stage_of = vec![0u32; cells];
     let mut stages: Vec<Vec<u32>> = Vec::new();
     for n in 0..cells {
-        let stage = incident(n).iter().map(|&t| after[t]).max().unwrap_or(0);
-        for &t in incident(n) {
-            after[t] = stage + 1;
-        }
+        let mut stage = 0;
+        sharing(n, &mut |m| {
+            if m < n {
+                stage = stage.max(stage_of[m] + 1);
+            }
+        });
+        stage_of[n] = stage;
         if stages.len() <= stage as usize {
             stages.push(Vec::new());
         }
@@ -651,8 +659,18 @@ mod tests {
         let around: Vec<Vec<usize>> = (0..400)
             .map(|_| (0..3 + next(6)).map(|_| next(60)).collect())
             .collect();
-        let incident = |n: usize| around[n].as_slice();
-        let stages = stages(around.len(), &incident, 60);
+        // The cells around each triangle, as the mesh's corners give them in the settling.
+        let mut on: Vec<Vec<usize>> = vec![Vec::new(); 60];
+        for (n, tris) in around.iter().enumerate() {
+            for &t in tris {
+                on[t].push(n);
+            }
+        }
+        let stages = stages(around.len(), |n, f| {
+            for &t in &around[n] {
+                on[t].iter().for_each(|&m| f(m));
+            }
+        });
         let mut stage_of = vec![usize::MAX; around.len()];
         for (s, cells) in stages.iter().enumerate() {
             assert!(

@@ -396,11 +396,15 @@ impl KeySet {
 
     /// The keys, in no particular order.
     pub fn iter(&self) -> impl Iterator<Item = Key> + '_ {
-        self.blocks().flat_map(|(b, w)| {
-            (0..64)
-                .filter(move |n| w & (1u64 << n) != 0)
-                .map(move |n| KeySet::cell_in_block(b, n))
-        })
+        self.blocks().flat_map(|(b, w)| KeySet::keys_in_block(b, w))
+    }
+
+    /// The keys of block `block` whose bits `word` holds (as `blocks` gives them), in the
+    /// order of `iter`.
+    pub fn keys_in_block(block: Key, word: u64) -> impl Iterator<Item = Key> {
+        (0..64)
+            .filter(move |n| word & (1u64 << n) != 0)
+            .map(move |n| KeySet::cell_in_block(block, n))
     }
 }
 

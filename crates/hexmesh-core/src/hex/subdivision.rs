@@ -167,13 +167,10 @@ impl Hierarchy {
         // Each point's leaf is found over the threads (a descent of the levels each, a
         // quarter of a second for plane-100k's points on one thread), then entered in order.
         let me = &*self;
-        let leaves: Vec<Key> =
-            crate::hex::parallel::ranges_in_parallel(me.threads, me.points.len(), 4096, |range| {
-                range
-                    .map(|i| me.leaf_of(me.points[i]))
-                    .collect::<Vec<Key>>()
-            })
-            .concat();
+        let mut leaves = vec![Key::ROOT; me.points.len()];
+        crate::hex::parallel::fill_in_parallel(me.threads, &mut leaves, 4096, |i| {
+            me.leaf_of(me.points[i])
+        });
         for (i, leaf) in leaves.into_iter().enumerate() {
             self.occupants.entry(leaf).or_default().push(i as u32);
             self.occupied.insert(leaf);
@@ -183,18 +180,24 @@ impl Hierarchy {
 
     /// How many full leaves `full_leaves_iter` gives, counted over the threads.
     fn count_full_leaves(&self) -> usize {
-        let blocks: Vec<(Key, u64)> = self.subdivided.blocks().collect();
-        let counts = crate::hex::parallel::in_parallel_from(self.threads, &blocks, 1024, |run| {
-            run.iter()
-                .flat_map(|&(block, word)| {
-                    (0..64)
-                        .filter(move |n| word & (1u64 << n) != 0)
-                        .map(move |n| KeySet::cell_in_block(block, n))
-                })
-                .map(|key| self.full_children(key).count())
+        let counts = self.in_subdivided_runs(|keys| {
+            keys.map(|key| self.full_children(key).count())
                 .sum::<usize>()
         });
         counts.iter().sum::<usize>() + usize::from(!self.subdivided.contains(&Key::ROOT))
+    }
+
+    /// `f` on runs of the subdivided hexagons, in the order of the subdivided set's
+    /// iteration, over the hierarchy's threads (runs of its blocks, from 1,024 blocks on);
+    /// the results in order.
+    fn in_subdivided_runs<R: Send>(
+        &self,
+        f: impl Fn(&mut dyn Iterator<Item = Key>) -> R + Sync,
+    ) -> Vec<R> {
+        let blocks: Vec<(Key, u64)> = self.subdivided.blocks().collect();
+        crate::hex::parallel::in_parallel_from(self.threads, &blocks, 1024, |run| {
+            f(&mut run.iter().flat_map(|&(b, w)| KeySet::keys_in_block(b, w)))
+        })
     }
 
     /// True when the hexagon of `key` is subdivided, counting cells outside the root as
@@ -633,16 +636,10 @@ impl Hierarchy {
     /// the hierarchy's threads in runs of the subdivided set's blocks (at plane-100k, 5.6 M
     /// leaves took a quarter of a second on one thread).
     pub fn full_leaves_where(&self, keep: impl Fn(Key) -> bool + Sync) -> Vec<Key> {
-        let blocks: Vec<(Key, u64)> = self.subdivided.blocks().collect();
-        let parts = crate::hex::parallel::in_parallel_from(self.threads, &blocks, 1024, |run| {
-            let mut out = Vec::new();
-            for &(block, word) in run {
-                for n in (0..64).filter(|n| word & (1u64 << n) != 0) {
-                    let key = KeySet::cell_in_block(block, n);
-                    out.extend(self.full_children(key).filter(|&c| keep(c)));
-                }
-            }
-            out
+        let parts = self.in_subdivided_runs(|keys| {
+            keys.flat_map(|key| self.full_children(key))
+                .filter(|&c| keep(c))
+                .collect::<Vec<Key>>()
         });
         let mut out = Vec::with_capacity(parts.iter().map(Vec::len).sum::<usize>() + 1);
         for part in parts {

@@ -419,18 +419,14 @@ mod tests {
     use super::*;
     use crate::geom::Point;
     use crate::progress::{Count, Event};
+    use crate::xorshift::XorShift;
     use std::sync::{Arc, Mutex};
 
     /// `n` points uniform in the unit square, from the xorshift sequence that starts at
     /// `seed` (the tiles' tests share it).
     pub(super) fn scattered(n: usize, seed: u64) -> Vec<Point> {
-        let mut x = seed;
-        let mut next = || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut x = XorShift::new(seed);
+        let mut next = || (x.next() >> 11) as f64 / (1u64 << 53) as f64;
         (0..n).map(|_| [next(), next()]).collect()
     }
 

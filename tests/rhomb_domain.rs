@@ -112,34 +112,65 @@ fn a_near_miss_beside_a_hole_is_mended_by_moving_the_front_corner_not_eroding() 
     meshed_within_the_promise(path, &input);
 }
 
-#[test]
-fn a_fill_that_erosions_cannot_mend_is_meshed_on_a_finer_band() {
-    // Case 1 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a six-point star:
-    // beside two of its tips the ladder missed by 0.5° to 4°, and eroding the corners it
-    // named widened the gap until it missed by 85° and gave up after 300 erosions. Every
-    // leaf the boundary touches split once (`finer_band`), it meshes at once.
-    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case1-star.poly";
-    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
-    let run = meshed_within_the_promise(path, &input);
-    // It is the finer band that meshes it: the run reports one, and the mesh is the same
-    // bytes when it is watched.
+/// The phases and counted rounds a watched run of `input` reports, beside the mesh, which
+/// must be the same bytes as an unwatched run's (`run`).
+fn watched_events(
+    input: &hexmesh::mesh::Pslg,
+    run: &hexmesh::mesher::MeshRun,
+) -> Vec<(&'static str, Option<u64>)> {
     let events = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
     let progress = {
         let events = std::sync::Arc::clone(&events);
         hexmesh::progress::Progress::new(move |e| events.lock().unwrap().push(e))
     };
     let watched = Rhomb
-        .mesh(&input, &Params::default().with_progress(progress))
+        .mesh(input, &Params::default().with_progress(progress))
         .unwrap();
     assert_eq!(watched.mesh.triangles, run.mesh.triangles);
     let events = events.lock().unwrap();
-    let bands: Vec<u64> = events
+    events
         .iter()
-        .filter(|e| e.phase == "finer band")
-        .map(|e| e.count.expect("counted").done)
-        .collect();
-    assert_eq!(bands, [1]);
+        .map(|e| (e.phase, e.count.map(|c| c.done)))
+        .collect()
+}
+
+#[test]
+fn a_star_whose_fill_erosions_could_not_mend_meshes_on_its_first_fill_without_short_fronts() {
+    // Case 1 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a six-point star:
+    // beside two of its tips the ladder missed by 0.5° to 4°, and eroding the corners it
+    // named widened the gap until it missed by 85° after 300 erosions; a band one size finer
+    // (`finer_band`) meshed it. The misses were at moved corners left half a side from
+    // another front corner: with those dropped (`cut::drop_short_fronts`), the first fill
+    // keeps the bounds.
+    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case1-star.poly";
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    let run = meshed_within_the_promise(path, &input);
+    let events = watched_events(&input, &run);
+    assert!(
+        events.iter().all(|e| e.0 != "finer band"),
+        "no finer band: {events:?}"
+    );
+    // One fill, and it is the last thing reported.
+    let fills: Vec<_> = events.iter().filter(|e| e.0 == "fills").collect();
+    assert_eq!(fills, [&("fills", Some(1))]);
+    assert_eq!(events.last(), Some(&("fills", Some(1))));
+}
+
+#[test]
+fn a_fill_that_erosions_and_moves_cannot_mend_is_meshed_on_a_finer_band() {
+    // Case 20 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a polygon with
+    // interior points: on the first band, erosions and moved corners leave a ladder outside
+    // the bounds for 12 fills. Every leaf the boundary touches split once (`finer_band`), it
+    // meshes.
+    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case20-interior-points.poly";
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    let run = meshed_within_the_promise(path, &input);
+    let events = watched_events(&input, &run);
+    let bands: Vec<_> = events.iter().filter(|e| e.0 == "finer band").collect();
+    assert_eq!(bands, [&("finer band", Some(1))], "{events:?}");
     // The fill that succeeds is on that band.
-    let last = events.last().expect("events");
-    assert_eq!(last.phase, "band made finer once: fills");
+    assert_eq!(
+        events.last().map(|e| e.0),
+        Some("band made finer once: fills")
+    );
 }

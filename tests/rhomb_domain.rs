@@ -134,6 +134,13 @@ fn watched_events(
         .collect()
 }
 
+/// Fixture `path` meshed within the promise, and what a watched run of it reports.
+fn meshed_fixture_events(path: &str) -> Vec<(&'static str, Option<u64>)> {
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    let run = meshed_within_the_promise(path, &input);
+    watched_events(&input, &run)
+}
+
 #[test]
 fn a_star_whose_fill_erosions_could_not_mend_meshes_on_its_first_fill_without_short_fronts() {
     // Case 1 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a six-point star:
@@ -142,10 +149,8 @@ fn a_star_whose_fill_erosions_could_not_mend_meshes_on_its_first_fill_without_sh
     // (`finer_band`) meshed it. The misses were at moved corners left half a side from
     // another front corner: with those dropped (`cut::drop_short_fronts`), the first fill
     // keeps the bounds.
-    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case1-star.poly";
-    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
-    let run = meshed_within_the_promise(path, &input);
-    let events = watched_events(&input, &run);
+    let events =
+        meshed_fixture_events("tests/fixtures/rhomb-domain/fuzz-seed20261123-case1-star.poly");
     assert!(
         events.iter().all(|e| e.0 != "finer band"),
         "no finer band: {events:?}"
@@ -162,10 +167,9 @@ fn a_fill_that_erosions_and_moves_cannot_mend_is_meshed_on_a_finer_band() {
     // interior points: on the first band, erosions and moved corners leave a ladder outside
     // the bounds for 12 fills. Every leaf the boundary touches split once (`finer_band`), it
     // meshes.
-    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case20-interior-points.poly";
-    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
-    let run = meshed_within_the_promise(path, &input);
-    let events = watched_events(&input, &run);
+    let events = meshed_fixture_events(
+        "tests/fixtures/rhomb-domain/fuzz-seed20261123-case20-interior-points.poly",
+    );
     let bands: Vec<_> = events.iter().filter(|e| e.0 == "finer band").collect();
     assert_eq!(bands, [&("finer band", Some(1))], "{events:?}");
     // The fill that succeeds is on that band.

@@ -165,7 +165,7 @@ impl<'a> Cut<'a> {
 
 /// What does not change while `fill` erodes: the adjacency, the moves, and the triangles
 /// kept before any erosion (inside the domain and untouched by it, no corner deleted, in
-/// bounds after the moves).
+/// bounds after the moves, no moved corner on a short front edge: `drop_short_fronts`).
 pub struct Prepared {
     edge: FxHashMap<(u32, u32), usize>,
     neighbours: Vec<Vec<u32>>,

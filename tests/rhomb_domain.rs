@@ -178,3 +178,21 @@ fn a_fill_that_erosions_and_moves_cannot_mend_is_meshed_on_a_finer_band() {
         Some("band made finer once: fills")
     );
 }
+
+#[test]
+fn a_lattice_strip_ending_inside_a_sharp_corner_meets_a_rung_at_its_tip() {
+    // Case 10 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a corner of 2.6°
+    // whose lattice runs 130 sides into it as a strip one to three rhombs wide. Where the
+    // strip ends, the wedge's rung had to lie, but the points along the sides there grew by
+    // 5 % from the corner, sides apart: the ladder missed by 7° to 22° on every band and ran
+    // past the budget. With points every tenth of a side around the front's end, the first
+    // band keeps the bounds.
+    let events = meshed_fixture_events(
+        "tests/fixtures/rhomb-domain/fuzz-seed20261123-case10-sharp-corner.poly",
+    );
+    assert!(
+        events.iter().all(|e| e.0 != "finer band"),
+        "no finer band: {events:?}"
+    );
+    assert_eq!(events.last().map(|e| e.0), Some("fills"), "{events:?}");
+}

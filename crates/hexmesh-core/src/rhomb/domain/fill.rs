@@ -8,9 +8,9 @@
 //! The candidate points on a side are the feet of the front corners nearest it, the points of
 //! the paper's border-boxes between neighbouring feet (`boxes::box_points`), points every
 //! tenth of a lattice side out to three sides from each corner and, towards a corner sharper
-//! than 90°, points at distances from it growing by 5 %. A ladder that keeps
-//! no [30°, 90°] triangulation names the front corner where its worst triangle is: the caller
-//! erodes it and cuts again.
+//! than 90°, points at distances from it growing by 5 % and every tenth of a side around
+//! where the front ends nearest it. A ladder that keeps no [30°, 90°] triangulation names
+//! the front corner where its worst triangle is: the caller erodes it and cuts again.
 
 use std::collections::HashMap;
 
@@ -443,9 +443,35 @@ fn fill_polygon(
             }
         }
     }
+    // Each corner's distance to the nearest front corner: the fan's radii span it (the
+    // outer ray points stay inside the gap, whether the lattice beside the corner is finer
+    // than at it or coarser), and a sharp corner's wedge reaches past it.
+    // With it, the lattice side at that front corner.
+    let (gap, tip_side): (Vec<f64>, Vec<f64>) = (0..nc)
+        .map(|j| {
+            (0..m)
+                .map(|i| (dist(fpos[i], ring[j]), cut.side[front[order[i]] as usize]))
+                .fold((f64::INFINITY, 0.0), |a, b| if b.0 < a.0 { b } else { a })
+        })
+        .unzip();
     for s in 0..nc {
         let e = (s + 1) % nc;
         let far = length[s];
+        // Below 90°, every tenth of a side along both sides where the front ends nearest the
+        // corner, from four sides short of it to one past: the wedge's rung under the
+        // lattice's tip lies there, where the points growing by 5 % from the corner are
+        // sides apart (fuzz case 84: 3.3 and 3.9 sides, 80 sides from a corner of 1.5°).
+        for (j, from_end) in [(s, false), (e, true)] {
+            if alpha[j] < 90.0 && gap[j].is_finite() {
+                let unit = tip_side[j] / 10.0;
+                for q in -40..=10 {
+                    let x = gap[j] + q as f64 * unit;
+                    if x > 0.0 && x < far / 2.0 {
+                        stops[s].push(if from_end { far - x } else { x });
+                    }
+                }
+            }
+        }
         if alpha[s] < 90.0 {
             stops[s].extend(growing(sides_at[s], far / 2.0));
         }
@@ -471,16 +497,6 @@ fn fill_polygon(
     for &t in stops[s0].iter().filter(|&&t| t > t0) {
         push(&mut inner, &mut place, Place::Side(s0, t), at(s0, t));
     }
-    // Each corner's distance to the nearest front corner: the fan's radii span it (the
-    // outer ray points stay inside the gap, whether the lattice beside the corner is finer
-    // than at it or coarser), and a sharp corner's wedge reaches past it.
-    let gap: Vec<f64> = (0..nc)
-        .map(|j| {
-            fpos.iter()
-                .map(|&p| dist(p, ring[j]))
-                .fold(f64::INFINITY, f64::min)
-        })
-        .collect();
     let fan_unit: Vec<f64> = gap.iter().map(|g| g / 1.5).collect();
     for step in 1..=nc {
         let j = (s0 + step) % nc; // the corner at the end of the side before

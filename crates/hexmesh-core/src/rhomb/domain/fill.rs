@@ -443,10 +443,10 @@ fn fill_polygon(
             }
         }
     }
-    // Each corner's distance to the nearest front corner: the fan's radii span it (the
+    // Each corner's distance to the nearest front corner (the fan's radii span it: the
     // outer ray points stay inside the gap, whether the lattice beside the corner is finer
-    // than at it or coarser), and a sharp corner's wedge reaches past it.
-    // With it, the lattice side at that front corner.
+    // than at it or coarser; a sharp corner's wedge reaches past it), and the lattice side
+    // at that front corner.
     let (gap, tip_side): (Vec<f64>, Vec<f64>) = (0..nc)
         .map(|j| {
             (0..m)

@@ -182,7 +182,7 @@ fn a_fill_that_erosions_and_moves_cannot_mend_is_meshed_on_a_finer_band() {
 #[test]
 fn a_lattice_strip_ending_inside_a_sharp_corner_meets_a_rung_at_its_tip() {
     // Case 10 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123), a corner of 2.6°
-    // whose lattice runs 130 sides into it as a strip one to three rhombs wide. Where the
+    // whose lattice ends 39 sides from it as a strip one to three rhombs wide. Where the
     // strip ends, the wedge's rung had to lie, but the points along the sides there grew by
     // 5 % from the corner, sides apart: the ladder missed by 7° to 22° on every band and ran
     // past the budget. With points every tenth of a side around the front's end, the first

@@ -19,6 +19,7 @@ use super::cut::{Cut, Segments};
 use super::input::Domain;
 use super::pieces::{solve, Chain, Pieces};
 use crate::geom::{angle_deg, dist, orient2d, Point};
+use crate::quality::feature_gap::point_segment_distance;
 
 /// A vertex of the filled mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
@@ -111,21 +112,11 @@ fn corner_angle(ring: &[Point], j: usize) -> f64 {
 fn rung_reach((w, c, v): (Point, Point, Point), reaches: &[(Point, f64)]) -> Option<f64> {
     reaches
         .iter()
-        .filter(|&&(p, r)| segment_distance(p, w, c) <= r && segment_distance(p, c, v) <= r)
+        .filter(|&&(p, r)| {
+            point_segment_distance(p, w, c) <= r && point_segment_distance(p, c, v) <= r
+        })
         .map(|&(p, r)| dist(p, c) + r)
         .max_by(f64::total_cmp)
-}
-
-/// The distance from p to the segment (a, b).
-fn segment_distance(p: Point, a: Point, b: Point) -> f64 {
-    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
-    let len2 = dx * dx + dy * dy;
-    let t = if len2 > 0.0 {
-        (((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / len2).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    dist(p, [a[0] + t * dx, a[1] + t * dy])
 }
 
 /// The margin of triangle (c, p, q) with its angle at c exempt (the whole input corner,
@@ -527,7 +518,8 @@ fn fill_polygon(
     }
     push(&mut inner, &mut place, Place::Side(s0, t0), at(s0, t0));
     let n = inner.len();
-    // Each front corner with its reach, as the windows below are found.
+    // Each front corner with its reach: the inner points within two sides of it, and half
+    // again its distance to the polygon (its window below, and `rung_reach`).
     let reaches: Vec<(Point, f64)> = (0..m)
         .map(|i| {
             let r = 2.0 * cut.side[front[order[i]] as usize]
@@ -647,10 +639,7 @@ fn fill_polygon(
         {
             anchor = *a;
         }
-        // Two sides, and half again the corner's distance to the polygon.
-        let height = found[order[i]].map_or(0.0, |f| f.2);
-        let reach = 2.0 * cut.side[front[order[i]] as usize] + 1.5 * height;
-        let p = fpos[i];
+        let (p, reach) = reaches[i];
         let lo_scan = anchor.saturating_sub(600);
         let hi_scan = (anchor + 600).min(n - 1);
         let near: Vec<usize> = (lo_scan..=hi_scan)
@@ -889,14 +878,5 @@ mod tests {
         // At 20 from c, reaching less than its distance to the sides: it meets neither.
         let short = (bisector(20.0), 0.4 * width_at(20.0));
         assert_eq!(rung_reach((w, c, v), &[short]), None);
-    }
-
-    #[test]
-    fn the_distance_to_a_segment_is_to_its_nearest_point_ends_included() {
-        let (a, b) = ([0.0, 0.0], [4.0, 0.0]);
-        assert_eq!(segment_distance([2.0, 3.0], a, b), 3.0);
-        assert_eq!(segment_distance([7.0, 4.0], a, b), 5.0);
-        assert_eq!(segment_distance([-3.0, -4.0], a, b), 5.0);
-        assert_eq!(segment_distance([1.0, 1.0], a, a), 2f64.sqrt());
     }
 }

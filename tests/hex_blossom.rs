@@ -5,7 +5,7 @@
 //! get blossoms and keep every bound.
 
 use hexmesh::geom::{dist, Point};
-use hexmesh::hex::blossom::{can_form, candidate_tops, coarsen};
+use hexmesh::hex::blossom::{can_form, candidate_tops, coarsen, coarsen_in_order};
 use hexmesh::hex::classify::{classify, rings, Class};
 use hexmesh::hex::dual::{extract_patched, first_inverted, Placement};
 use hexmesh::hex::extended::{delaunay_violations, mesh_extended, relocations};
@@ -157,6 +157,44 @@ fn candidates_are_tried_in_key_order_and_blossoms_never_overlap() {
     let mut reversed = tops.clone();
     reversed.reverse();
     assert_eq!(coarsen(&mut again, &r, &reversed), merged);
+}
+
+#[test]
+fn coarsening_over_threads_forms_the_blossoms_of_trying_each_top_in_order() {
+    // A level-8 plane (more than 8,192 candidate tops: split over threads) with a few
+    // points, whose rings keep blossoms away from them; neighbouring tops both pass the
+    // condition at first, and only the first in key order may form.
+    let points: Vec<hexmesh::Point> = (0..12)
+        .map(|n| {
+            let a = n as f64 * 0.9;
+            [0.6 * a.cos() * (n as f64 / 12.0), 0.5 * a.sin()]
+        })
+        .collect();
+    for threads in [1, 2, 3] {
+        let mut h = uniform_with(8, points.clone());
+        h.set_threads(threads);
+        let r = rings(&h);
+        let leaves: Vec<Key> = h
+            .leaves()
+            .into_iter()
+            .filter(|(_, c)| *c == Cell::Full { subdivided: false })
+            .map(|(k, _)| k)
+            .collect();
+        let tops = candidate_tops(&h, &r, leaves);
+        assert!(tops.len() > 8192, "{} tops", tops.len());
+        let mut reference = h.clone();
+        let want = coarsen_in_order(&mut reference, &r, &tops);
+        let got = coarsen(&mut h, &r, &tops);
+        assert!(want.len() > 7 * 100, "{} hexagons merged", want.len());
+        // Compared whole, reported by length: the lists run to thousands of keys.
+        assert!(
+            got == want,
+            "{threads} threads: {} hexagons merged, {} when tried in order",
+            got.len(),
+            want.len()
+        );
+        assert!(h.leaves() == reference.leaves(), "{threads} threads");
+    }
 }
 
 #[test]

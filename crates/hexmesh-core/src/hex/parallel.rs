@@ -69,6 +69,37 @@ pub(crate) fn ranges_in_parallel<R: Send>(
     })
 }
 
+/// One list sorted by `key` from `runs`, each sorted by it: merged pairwise, a round per
+/// doubling, so O(n log runs). Ties keep the earlier run's items first, so runs made by
+/// `ranges_in_parallel` and sorted each merge as a stable sort of their concatenation would
+/// order them.
+pub(crate) fn merge_sorted_runs<T, K: Ord>(mut runs: Vec<Vec<T>>, key: impl Fn(&T) -> K) -> Vec<T> {
+    while runs.len() > 1 {
+        let mut next = Vec::with_capacity(runs.len().div_ceil(2));
+        let mut it = runs.into_iter();
+        while let Some(a) = it.next() {
+            let Some(b) = it.next() else {
+                next.push(a);
+                break;
+            };
+            let mut out = Vec::with_capacity(a.len() + b.len());
+            let (mut a, mut b) = (a.into_iter().peekable(), b.into_iter().peekable());
+            loop {
+                let take_b = match (a.peek(), b.peek()) {
+                    (Some(x), Some(y)) => key(y) < key(x),
+                    (Some(_), None) => false,
+                    (None, Some(_)) => true,
+                    (None, None) => break,
+                };
+                out.extend(if take_b { b.next() } else { a.next() });
+            }
+            next.push(out);
+        }
+        runs = next;
+    }
+    runs.pop().unwrap_or_default()
+}
+
 /// Sets `out[i] = f(i)` for every index, over `threads` threads in consecutive ranges when
 /// `out` has at least `min` entries: `ranges_in_parallel` without a list of parts to join
 /// (for a result of one entry a triangle, a second copy of it).
@@ -287,6 +318,28 @@ mod tests {
                 assert!(parts.len() <= threads.max(1), "{n} {threads}");
             }
         }
+    }
+
+    #[test]
+    fn merged_runs_are_the_stable_sort_of_their_concatenation() {
+        // Items (key, tag): equal keys in several runs, so that a merge taking a later run's
+        // item first on a tie would show in the tags.
+        let items: Vec<(u32, usize)> = (0..500).map(|i| ((i * 7919 % 61) as u32, i)).collect();
+        let mut stable = items.clone();
+        stable.sort_by_key(|e| e.0);
+        for runs in [1, 2, 3, 5, 8] {
+            let size = items.len().div_ceil(runs);
+            let sorted: Vec<Vec<(u32, usize)>> = items
+                .chunks(size)
+                .map(|c| {
+                    let mut c = c.to_vec();
+                    c.sort_by_key(|e| e.0);
+                    c
+                })
+                .collect();
+            assert_eq!(merge_sorted_runs(sorted, |e| e.0), stable, "{runs} runs");
+        }
+        assert!(merge_sorted_runs(Vec::<Vec<u8>>::new(), |&e| e).is_empty());
     }
 
     /// `n` items of uneven costs (`cost`), so that threads finish them out of order.

@@ -10,7 +10,8 @@ use crate::geom::{orient2d, Point};
 use crate::hex::classify::Rings;
 use crate::hex::lattice::{FxHashMap, Key, KeyBytes};
 use crate::hex::parallel::{
-    each_in_parallel, fill_in_parallel, in_parallel, ranges_in_parallel, PARALLEL_MIN,
+    each_in_parallel, fill_in_parallel, in_parallel, merge_sorted_runs, ranges_in_parallel,
+    PARALLEL_MIN,
 };
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
@@ -104,26 +105,27 @@ pub(super) fn settle_contested(
         return Moves::default();
     }
     let slack = HEX.self_check_slack;
-    // The vertices of contested cells, with their lattice centre and radius, sorted by key;
-    // looked up over the hierarchy's threads in ranges of vertices, concatenated in order.
-    let mut cells: Vec<(Key, usize, Point, f64)> =
-        ranges_in_parallel(h.threads(), keys.len(), PARALLEL_MIN, |range| {
-            let mut cells = Vec::new();
-            let from = range.start.max(h.points.len());
-            for (v, &k) in keys[..range.end].iter().enumerate().skip(from) {
-                if let Some(leaf) = wanted.cell(h, r, k, with_neighbours) {
-                    if movable(k) {
-                        cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
-                    }
+    // The vertices of contested cells, with their lattice centre and radius, sorted by key
+    // (then vertex); looked up and sorted over the hierarchy's threads in ranges of vertices,
+    // the ranges merged (1.4 million cells in the second pass at plane-100k: sorted on one
+    // thread, 0.14 s).
+    let runs = ranges_in_parallel(h.threads(), keys.len(), PARALLEL_MIN, |range| {
+        let mut cells = Vec::new();
+        let from = range.start.max(h.points.len());
+        for (v, &k) in keys[..range.end].iter().enumerate().skip(from) {
+            if let Some(leaf) = wanted.cell(h, r, k, with_neighbours) {
+                if movable(k) {
+                    cells.push((leaf, v, h.lattice.center(leaf), h.lattice.radius(leaf.k)));
                 }
             }
-            cells
-        })
-        .concat();
+        }
+        cells.sort_unstable_by_key(|c: &(Key, usize, Point, f64)| (c.0.packed(), c.1));
+        cells
+    });
+    let cells = merge_sorted_runs(runs, |c| (c.0.packed(), c.1));
     if cells.is_empty() {
         return Moves::default();
     }
-    cells.sort_by_key(|c| c.0);
     // The cell of each mesh vertex (u32::MAX: none), and the triangles around each cell.
     let mut cell_of = vec![u32::MAX; mesh.vertices.len()];
     for (n, c) in cells.iter().enumerate() {
@@ -284,21 +286,11 @@ pub(super) fn settle_contested(
     // share no triangle, are searched side by side against the places the earlier stages
     // left. The moves are those of the sequential sweep, for any number of threads.
     let threads = h.threads();
-    let stages = if threads > 1 {
-        let triangles = &mesh.triangles;
-        stages(cells.len(), |n, f| {
-            for &t in incident(n) {
-                for &w in &triangles[t] {
-                    if let Some(&m) = cell_of.get(w as usize).filter(|&&m| m != u32::MAX) {
-                        f(m as usize);
-                    }
-                }
-            }
-        })
-    } else {
-        // One thread: one stage, visited cell by cell.
-        vec![(0..cells.len() as u32).collect()]
-    };
+    // Built at the first sweep with at least `STAGED_MIN` cells to search, and one for every
+    // `CELLS_PER_SEARCH` cells: below that, the stages (0.18 s for the 1.4 million cells of
+    // plane-100k's second pass) and visiting the cells stage by stage cost more than the
+    // threads gain, and the cells go one by one.
+    let mut staged: Option<Vec<Vec<u32>>> = None;
     // Whether a cell's flags may have changed since it was last found without a flagged
     // triangle: only a move of a cell sharing a triangle changes them, so the later sweeps
     // look only at the cells near the moves.
@@ -325,19 +317,41 @@ pub(super) fn settle_contested(
     };
     for _sweep in 0..6 {
         let mut changed = false;
-        for stage in &stages {
-            if threads < 2 {
-                for &n in stage {
-                    let n = n as usize;
-                    if wanted(&flagged, &mut look, n) {
-                        if let Some(best) = search(mesh, n) {
-                            apply(mesh, &mut flagged, &mut look, n, best);
-                            changed = true;
+        // The cells flagged as the sweep starts (a move can flag more, near it).
+        let to_search = if threads < 2 {
+            0
+        } else {
+            (0..cells.len())
+                .filter(|&n| look[n] && incident(n).iter().any(|&t| flagged[t] == 2))
+                .count()
+        };
+        if to_search < STAGED_MIN || to_search * CELLS_PER_SEARCH < cells.len() {
+            for n in 0..cells.len() {
+                if wanted(&flagged, &mut look, n) {
+                    if let Some(best) = search(mesh, n) {
+                        apply(mesh, &mut flagged, &mut look, n, best);
+                        changed = true;
+                    }
+                }
+            }
+            if !changed {
+                break;
+            }
+            continue;
+        }
+        let stages = staged.get_or_insert_with(|| {
+            let triangles = &mesh.triangles;
+            stages(cells.len(), |n, f| {
+                for &t in incident(n) {
+                    for &w in &triangles[t] {
+                        if let Some(&m) = cell_of.get(w as usize).filter(|&&m| m != u32::MAX) {
+                            f(m as usize);
                         }
                     }
                 }
-                continue;
-            }
+            })
+        });
+        for stage in stages.iter() {
             // The cells of the stage with a flagged triangle, as the sequential sweep finds
             // them at each one's turn.
             let mut active: Vec<usize> = Vec::new();
@@ -371,6 +385,18 @@ pub(super) fn settle_contested(
 /// Stages of a sweep with at least this many cells to search are searched over threads: a
 /// search scores 193 places, so that a few hundred are worth a thread.
 const SETTLE_PARALLEL_MIN: usize = 256;
+
+/// A sweep goes in stages (`stages`) when at least this many cells are flagged as it starts,
+/// and at least one in `CELLS_PER_SEARCH` of the cells. A search (about 60 µs) gains half its
+/// time on two threads; the stages cost about 0.13 µs a cell to build, and each stage a
+/// hand-out to the threads. At plane-100k the first pass (20,703 cells) searches 15,044 cells
+/// in its first sweep, 2,889 in its second, 700 to 1,000 in the others; the second pass (1.4
+/// million cells) 150 to 1,500: the first two sweeps go in stages. So does plane-10k's first
+/// (1,553 of 2,061), which the test of one, two and three threads runs.
+const STAGED_MIN: usize = 1024;
+
+/// See `STAGED_MIN`.
+const CELLS_PER_SEARCH: usize = 256;
 
 /// The stages of a sweep over `cells` cells (`settle_contested`), where `sharing(n, f)` calls
 /// `f` with every cell that shares a triangle with cell n (n itself and repeats allowed):
@@ -419,18 +445,16 @@ pub(super) fn polish_rings(
     movable: &dyn Fn(Key) -> bool,
 ) -> Moves {
     let slack = HEX.self_check_slack;
-    // Ring cells by canonical key.
-    let mut ring: FxHashMap<Key, Key> = FxHashMap::default();
-    for &c in r.roles.keys() {
-        if h.is_full_leaf(c) {
-            ring.insert(c.canonical(), c);
-        }
-    }
+    // The ring cell of a vertex: the leaf at the end of its canonical key's chain of central
+    // children, when the rings hold it. Looked up per vertex, not listed: the rings cover the
+    // whole hierarchy (listing them took 0.54 s of a local check at plane-100k).
     let is_cell = |v: usize| -> Option<Key> {
         if v < h.points.len() || !movable(keys[v]) {
             return None;
         }
-        ring.get(&keys[v]).copied()
+        let leaf = h.leaf_of_vertex(keys[v]);
+        (leaf.canonical() == keys[v] && r.roles.contains_key(&leaf) && h.is_full_leaf(leaf))
+            .then_some(leaf)
     };
     // Triangles around each vertex.
     let mut around_vertex: Vec<Vec<usize>> = vec![Vec::new(); mesh.vertices.len()];

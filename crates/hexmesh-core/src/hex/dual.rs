@@ -769,10 +769,27 @@ impl Part {
 
 /// The first triangle that is not strictly counter-clockwise under exact orientation, if any.
 pub fn first_inverted(mesh: &TriMesh) -> Option<usize> {
-    (0..mesh.triangles.len()).find(|&t| {
-        let [a, b, c] = mesh.corners(t);
-        orient2d(a, b, c) <= 0.0
-    })
+    first_inverted_over(mesh, 1)
+}
+
+/// `first_inverted` with the triangles looked at over `threads` threads in ranges, the first
+/// range's find first: the same answer for every count.
+pub fn first_inverted_over(mesh: &TriMesh, threads: usize) -> Option<usize> {
+    let n = mesh.triangles.len();
+    crate::hex::parallel::ranges_in_parallel(
+        threads,
+        n,
+        crate::hex::parallel::PARALLEL_MIN,
+        |range| {
+            range.into_iter().find(|&t| {
+                let [a, b, c] = mesh.corners(t);
+                orient2d(a, b, c) <= 0.0
+            })
+        },
+    )
+    .into_iter()
+    .flatten()
+    .next()
 }
 
 #[cfg(test)]
@@ -784,6 +801,29 @@ mod tests {
     };
     use crate::hex::key::DIRS;
     use crate::{Params, Pslg};
+
+    #[test]
+    fn the_first_inverted_triangle_is_the_same_for_every_thread_count() {
+        // 20,000 copies of one counter-clockwise triangle (ranges split from 8,192 on).
+        let mut mesh = TriMesh {
+            vertices: vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]],
+            triangles: vec![[0, 1, 2]; 20_000],
+        };
+        for threads in [1, 2, 3] {
+            assert_eq!(first_inverted_over(&mesh, threads), None);
+        }
+        // Inverted in the last range, then also in the first: the first in order wins.
+        for (t, first) in [(19_000, 19_000), (3_000, 3_000)] {
+            mesh.triangles[t] = [0, 2, 1];
+            for threads in [1, 2, 3] {
+                assert_eq!(
+                    first_inverted_over(&mesh, threads),
+                    Some(first),
+                    "{threads}"
+                );
+            }
+        }
+    }
 
     #[test]
     fn a_cell_is_on_the_lines_of_a_level_exactly_when_it_lies_on_an_edge_of_its_triangles() {

@@ -278,6 +278,41 @@ pub fn check_angles(
     )
 }
 
+/// `check_angles` with the triangles clearly inside the bounds' window (most of them) found
+/// over `threads` threads first: the same verdict and message for every count.
+pub fn check_angles_over(
+    mesh: &crate::mesh::TriMesh,
+    points: &[Point],
+    (lo, hi): (f64, f64),
+    max_rounding: f64,
+    mesher: &str,
+    threads: usize,
+) -> crate::error::Result<()> {
+    if !(lo < 90.0 && hi >= 90.0 && max_rounding >= SKIP_SLACK_DEG) {
+        return check_angles(mesh, points, (lo, hi), max_rounding, mesher);
+    }
+    let window = AngleWindow::new(lo, hi, SKIP_SLACK_DEG);
+    let n = mesh.triangles.len();
+    let measured = crate::hex::parallel::ranges_in_parallel(
+        threads,
+        n,
+        crate::hex::parallel::PARALLEL_MIN,
+        |range| {
+            range
+                .filter(|&t| !window.clearly_within(&mesh.corners(t)))
+                .collect::<Vec<usize>>()
+        },
+    );
+    check_triangle_angles(
+        mesh,
+        measured.into_iter().flatten(),
+        points,
+        (lo, hi),
+        max_rounding,
+        mesher,
+    )
+}
+
 /// `check_angles` on the triangles `triangles` of `mesh` only (indices into the whole mesh,
 /// which the messages use).
 pub fn check_triangle_angles(
@@ -427,6 +462,53 @@ mod tests {
                 ..
             }) => {}
             other => panic!("expected a refusal, got {other:?}"),
+        }
+    }
+
+    /// A strip of `n` right isosceles triangles along the x axis (angles 45°, 45°, 90°).
+    fn strip(n: usize) -> crate::mesh::TriMesh {
+        let mut vertices = Vec::new();
+        for i in 0..=n / 2 + 1 {
+            vertices.push([i as f64, 0.0]);
+            vertices.push([i as f64, 1.0]);
+        }
+        let triangles = (0..n as u32)
+            .map(|t| {
+                let (i, up) = (2 * (t / 2), t % 2 == 1);
+                if up {
+                    [i + 2, i + 3, i + 1]
+                } else {
+                    [i, i + 2, i + 1]
+                }
+            })
+            .collect();
+        crate::mesh::TriMesh {
+            vertices,
+            triangles,
+        }
+    }
+
+    #[test]
+    fn angles_checked_over_threads_give_the_verdict_and_message_of_one() {
+        // 20,000 triangles (ranges split from 8,192 on); two of them spoiled, one in the
+        // first range and one in the last, so that a range's own finding must not win.
+        let mut mesh = strip(20_000);
+        let bounds = (44.0, 90.0);
+        let one = check_angles(&mesh, &mesh.vertices, bounds, 0.01, "m");
+        assert!(one.is_ok(), "{one:?}");
+        for threads in [2, 3] {
+            let many = check_angles_over(&mesh, &mesh.vertices, bounds, 0.01, "m", threads);
+            assert!(many.is_ok(), "{threads}: {many:?}");
+        }
+        for t in [19_000, 3_000] {
+            // The triangle's apex moved along x: its angles leave [44°, 90°] by degrees.
+            let v = mesh.triangles[t][2] as usize;
+            mesh.vertices[v][0] += 0.3;
+            let one = check_angles(&mesh, &mesh.vertices, bounds, 0.01, "m").unwrap_err();
+            for threads in [2, 3] {
+                let many = check_angles_over(&mesh, &mesh.vertices, bounds, 0.01, "m", threads);
+                assert_eq!(many.unwrap_err().to_string(), one.to_string(), "{threads}");
+            }
         }
     }
 

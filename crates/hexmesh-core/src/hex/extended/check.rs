@@ -221,6 +221,7 @@ pub fn settle_rounding(
     points: &[Point],
     rounding_pairs: u64,
     max_rounding: f64,
+    threads: usize,
 ) -> Result<()> {
     if rounding_pairs > 0 {
         flip_rounding_pairs(mesh);
@@ -234,12 +235,13 @@ pub fn settle_rounding(
             ));
         }
     }
-    rounding::check_angles(
+    rounding::check_angles_over(
         mesh,
         points,
         (HEX.min_angle, HEX.max_angle),
         max_rounding,
         "hex",
+        threads,
     )
 }
 

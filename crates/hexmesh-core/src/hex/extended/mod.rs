@@ -289,7 +289,8 @@ impl Mesher for HexInTiles {
 fn mesh_points(input: &Pslg, params: &Params, start: Instant, per_tile: usize) -> Result<MeshRun> {
     let limits = size::limits(input, params)?;
     let mut out = mesh_extended_in_tiles(input, params, per_tile)?;
-    if let Some(t) = dual::first_inverted(&out.mesh) {
+    let threads = out.hierarchy.threads();
+    if let Some(t) = dual::first_inverted_over(&out.mesh, threads) {
         return Err(Error::mesher(
             Hex.name(),
             format!("internal error: dual triangle {t} is not counter-clockwise"),
@@ -301,6 +302,7 @@ fn mesh_points(input: &Pslg, params: &Params, start: Instant, per_tile: usize) -
             &input.points,
             out.stats.rounding_pairs,
             params.max_rounding_deg(),
+            threads,
         )?;
         size::check(&out.mesh, limits, Hex.name(), |_| true)?;
     }

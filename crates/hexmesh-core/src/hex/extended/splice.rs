@@ -5,6 +5,7 @@
 use super::ExtendedStats;
 use crate::geom::Point;
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key};
+use crate::hex::parallel::{fill_in_parallel, PARALLEL_MIN};
 use crate::hex::region::Region;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
@@ -75,7 +76,11 @@ pub(crate) fn splice(
 ) -> Option<TriMesh> {
     let (old, old_keys) = old;
     let inside = |k: &Key| inner.contains(h.leaf_of_vertex(*k));
-    let old_in: Vec<bool> = old_keys.iter().map(inside).collect();
+    // Each vertex's leaf looked up over the threads (5.9 million at plane-100k).
+    let mut old_in = vec![false; old_keys.len()];
+    fill_in_parallel(h.threads(), &mut old_in, PARALLEL_MIN, |v| {
+        inside(&old_keys[v])
+    });
     let part_in: Vec<bool> = part_keys.iter().map(inside).collect();
     let TriMesh {
         mut vertices,

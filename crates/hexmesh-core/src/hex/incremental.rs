@@ -79,7 +79,7 @@ impl IncrementalHex {
             h,
             &mut self.stats,
             &mut self.rings,
-            candidates,
+            (candidates, None),
             Some(changed),
             None,
         ) {

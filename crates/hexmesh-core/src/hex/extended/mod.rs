@@ -108,6 +108,7 @@ mod undo;
 use std::time::Instant;
 
 use crate::error::{Error, Result};
+use crate::hex::classify::Rings;
 use crate::hex::dual::{self, Placement};
 use crate::hex::lattice::{Key, KeySet};
 use crate::hex::refine::refine_simple;
@@ -384,8 +385,10 @@ fn refine_and_verify(
     progress: Option<&Progress>,
 ) -> Result<TriMesh, Stop> {
     progress::phase(progress, "simple refinement");
-    let candidates = refine_simple_and_sizes(h)?;
-    match extend_and_verify(h, stats, state, candidates, None, progress)? {
+    refine_simple(h)?;
+    size::refine(h)?;
+    let (candidates, rings) = full_leaves_and_rings(h);
+    match extend_and_verify(h, stats, state, (candidates, Some(rings)), None, progress)? {
         Some(mesh) => Ok(mesh),
         None => {
             progress::phase(progress, "final dual");
@@ -403,6 +406,27 @@ pub(crate) fn refine_simple_and_sizes(h: &mut Hierarchy) -> Result<KeySet, Stop>
     // so the full leaves as a block set do (not every leaf with its cell, sorted: at plane-1m
     // about 5 GB built and sorted once).
     Ok(h.full_leaves_iter().collect())
+}
+
+/// The full leaves as `refine_simple_and_sizes` gives them, and the rings the extended rules
+/// read first (`classify::rings`, with the occupancy tracked from here on, as the ring cache
+/// does): both only read the hierarchy, and on more than one thread they are made side by
+/// side (at plane-100k the rings take 0.6 s, the set of 5.6 million leaves about 0.25 s).
+fn full_leaves_and_rings(h: &mut Hierarchy) -> (KeySet, Rings) {
+    use crate::hex::classify::rings;
+    h.track_occupancy();
+    let h = &*h;
+    if h.threads() < 2 {
+        return (h.full_leaves_iter().collect(), rings(h));
+    }
+    std::thread::scope(|scope| {
+        let made = scope.spawn(|| rings(h));
+        let leaves = h.full_leaves_iter().collect();
+        match made.join() {
+            Ok(r) => (leaves, r),
+            Err(panic) => std::panic::resume_unwind(panic),
+        }
+    })
 }
 
 /// The relocated dual of the whole subdivision, with the ring decisions of `state`

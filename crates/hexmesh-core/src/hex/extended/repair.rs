@@ -35,18 +35,22 @@ use crate::progress::{self, Progress};
 /// whole dual is spliced from the complete one and that region's (`splice`); `None` says
 /// that the whole dual passes but is still to be extracted (`final_dual`): there was no
 /// complete check (incremental insertion), or the splice was refused. `state` keeps the
-/// ring decisions of the self-check. `progress` hears of the phases: the extended rules, the
-/// steps of the complete check, each local check, each later round of rules, the splice of
-/// the final dual.
+/// ring decisions of the self-check. The rings of `h` as it stands may come along (made
+/// while its occupancy was tracked), else they are made at the first rules. `progress`
+/// hears of the phases: the extended rules, the steps of the complete check, each local
+/// check, each later round of rules, the splice of the final dual.
 pub(crate) fn extend_and_verify(
     h: &mut Hierarchy,
     stats: &mut ExtendedStats,
     state: &mut RingState,
-    candidates: KeySet,
+    (candidates, rings): (KeySet, Option<Rings>),
     changed: Option<Vec<Key>>,
     progress: Option<&Progress>,
 ) -> Result<Option<TriMesh>, Stop> {
     let mut repair = Repair::new(h, stats, state, candidates, changed);
+    if let Some(r) = rings {
+        repair.cache = RingCache::holding(r);
+    }
     repair.progress = progress;
     repair.run()
 }

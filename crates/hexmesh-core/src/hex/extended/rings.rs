@@ -124,6 +124,12 @@ pub(super) struct RingCache {
 }
 
 impl RingCache {
+    /// A cache holding the rings `r` of the hierarchy as it stands, whose occupancy changes
+    /// are tracked from when `r` was made (`Hierarchy::track_occupancy`).
+    pub(super) fn holding(r: Rings) -> RingCache {
+        RingCache { rings: Some(r) }
+    }
+
     pub(super) fn get(&mut self, h: &mut Hierarchy) -> &Rings {
         match &mut self.rings {
             Some(r) => {

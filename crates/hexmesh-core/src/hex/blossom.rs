@@ -67,14 +67,17 @@ pub fn can_form(h: &Hierarchy, r: &Rings, top: Key) -> bool {
 ///
 /// The condition is first read for every top on the state before any blossom, over the
 /// threads; then, in key order, the tops that passed are read again on the state the
-/// blossoms before them left. A top that failed at first would fail again: a blossom only
-/// takes its seven hexagons out of the subdivided set, and `can_form` can turn from false to
-/// true by that alone through one read, a MOVED_CENTER_3 neighbour n of a cell x of the
-/// 4-ring (x then MOVED_CENTER_4) that stops being a full leaf. n would have to be a child
-/// of the blossom's hexagons, which its own condition required to be FIXED_CENTER_REGULAR,
-/// hence not MOVED_CENTER_3. Every other read (subdivided hexagons, full leaves, classes
-/// without fins) only turns true to false. At plane-100k 21,597 of 1,056,401 tops pass the
-/// first reading and 6,225 blossoms form.
+/// blossoms before them left. A top that failed at first fails then too. Key order goes
+/// level by level, coarsest first, and a blossom of level k only takes its seven hexagons
+/// out of the subdivided set. The condition of a top of level k reads which hexagons of
+/// levels k and k + 1 are subdivided (the top and its neighbours; the parents of the cells
+/// of level k + 1 it tests for full leaves; their fins and MOVED_CENTER_3 neighbours), so a
+/// coarser blossom changes nothing it reads, and one of its own level can only turn its
+/// reads from true to false (hexagons no longer subdivided, cells below them no longer full
+/// leaves) but one: a cell x of the 4-ring whose MOVED_CENTER_3 neighbour n stops being a
+/// full leaf stops being MOVED_CENTER_4. n would be a child of the blossom's hexagons, which
+/// that blossom's condition required to be FIXED_CENTER_REGULAR, hence not MOVED_CENTER_3.
+/// At plane-100k 21,597 of 1,056,401 tops pass the first reading and 6,225 blossoms form.
 pub fn coarsen(h: &mut Hierarchy, r: &Rings, tops: &[Key]) -> Vec<Key> {
     let mut tops = tops.to_vec();
     tops.sort_unstable_by_key(|k| k.packed());

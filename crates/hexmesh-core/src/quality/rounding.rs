@@ -490,8 +490,8 @@ mod tests {
 
     #[test]
     fn angles_checked_over_threads_give_the_verdict_and_message_of_one() {
-        // 20,000 triangles (ranges split from 8,192 on); two of them spoiled, one in the
-        // first range and one in the last, so that a range's own finding must not win.
+        // 20,000 triangles (ranges split from 8,192 on), spoiled in two places: first in the
+        // last range, then also in the first, so that a later range's finding must not win.
         let mut mesh = strip(20_000);
         let bounds = (44.0, 90.0);
         let one = check_angles(&mesh, &mesh.vertices, bounds, 0.01, "m");

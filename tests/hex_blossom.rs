@@ -43,11 +43,17 @@ fn uniform_with(level: u8, points: Vec<hexmesh::Point>) -> Hierarchy {
     h
 }
 
-fn full_leaves(h: &Hierarchy) -> usize {
+/// The full unsubdivided hexagons of `h`, sorted.
+fn full_leaf_keys(h: &Hierarchy) -> Vec<Key> {
     h.leaves()
-        .iter()
+        .into_iter()
         .filter(|(_, c)| *c == Cell::Full { subdivided: false })
-        .count()
+        .map(|(k, _)| k)
+        .collect()
+}
+
+fn full_leaves(h: &Hierarchy) -> usize {
+    full_leaf_keys(h).len()
 }
 
 fn radius_ratio(t: [Point; 3]) -> f64 {
@@ -138,13 +144,7 @@ fn anything_but_a_plain_region_within_the_four_ring_prevents_the_blossom() {
 fn candidates_are_tried_in_key_order_and_blossoms_never_overlap() {
     let mut h = uniform(5);
     let r = rings(&h);
-    let leaves: Vec<Key> = h
-        .leaves()
-        .into_iter()
-        .filter(|(_, c)| *c == Cell::Full { subdivided: false })
-        .map(|(k, _)| k)
-        .collect();
-    let tops = candidate_tops(&h, &r, leaves);
+    let tops = candidate_tops(&h, &r, full_leaf_keys(&h));
     let merged = coarsen(&mut h, &r, &tops);
     assert!(merged.len() >= 14, "a level-5 plane holds several blossoms");
     let mut unique = merged.clone();
@@ -174,13 +174,7 @@ fn coarsening_over_threads_forms_the_blossoms_of_trying_each_top_in_order() {
         let mut h = uniform_with(8, points.clone());
         h.set_threads(threads);
         let r = rings(&h);
-        let leaves: Vec<Key> = h
-            .leaves()
-            .into_iter()
-            .filter(|(_, c)| *c == Cell::Full { subdivided: false })
-            .map(|(k, _)| k)
-            .collect();
-        let tops = candidate_tops(&h, &r, leaves);
+        let tops = candidate_tops(&h, &r, full_leaf_keys(&h));
         assert!(tops.len() > 8192, "{} tops", tops.len());
         let mut reference = h.clone();
         let want = coarsen_in_order(&mut reference, &r, &tops);

@@ -93,14 +93,14 @@ impl Mesher for HexSimple {
         };
         crate::progress::phase(progress, "dual");
         let mesh = dual::extract(&h, placement);
-        if let Some(t) = dual::first_inverted(&mesh) {
+        if let Some(t) = dual::first_inverted_over(&mesh, h.threads()) {
             return Err(Error::mesher(
                 self.name(),
                 format!("internal error: dual triangle {t} is not counter-clockwise"),
             ));
         }
         if stop.is_none() {
-            check_rounded_angles(&mesh, &input.points, params.max_rounding_deg())?;
+            check_rounded_angles(&mesh, &input.points, params.max_rounding_deg(), h.threads())?;
             size::check(&mesh, size::limits(input, params)?, self.name(), |_| true)?;
         }
         Ok(MeshRun {
@@ -210,9 +210,22 @@ fn run_simple(h: &mut Hierarchy) -> Result<Option<StopReason>> {
 /// The angle bounds of the simple refinement, degrees (Sec. 4.3).
 const SIMPLE_ANGLES: (f64, f64) = (30.0, 120.0);
 
-/// The mesh of `hex-simple` against [30°, 120°] (`quality::rounding::check_angles`).
-fn check_rounded_angles(mesh: &TriMesh, points: &[Point], max_rounding: f64) -> Result<()> {
-    rounding::check_angles(mesh, points, SIMPLE_ANGLES, max_rounding, "hex-simple")
+/// The mesh of `hex-simple` against [30°, 120°] (`quality::rounding::check_angles_over`,
+/// over `threads` threads: the same verdict for every count).
+fn check_rounded_angles(
+    mesh: &TriMesh,
+    points: &[Point],
+    max_rounding: f64,
+    threads: usize,
+) -> Result<()> {
+    rounding::check_angles_over(
+        mesh,
+        points,
+        SIMPLE_ANGLES,
+        max_rounding,
+        "hex-simple",
+        threads,
+    )
 }
 
 /// The error of a failed insertion into a finished mesh of the mesher `mesher`.
@@ -334,7 +347,7 @@ mod tests {
         // would use more than 1e-4°: refused, naming the input points beside it.
         let mesh = thin(1e12, 1e-3);
         let points = [mesh.vertices[0], mesh.vertices[1]];
-        match check_rounded_angles(&mesh, &points, 1e-4) {
+        match check_rounded_angles(&mesh, &points, 1e-4, 1) {
             Err(Error::Input {
                 problem:
                     crate::error::InputError::Rounding {
@@ -349,7 +362,7 @@ mod tests {
             other => panic!("expected a rounding refusal, got {other:?}"),
         }
         // Allowed 0.01°, the same mesh passes.
-        assert!(check_rounded_angles(&mesh, &points, 0.01).is_ok());
+        assert!(check_rounded_angles(&mesh, &points, 0.01, 1).is_ok());
     }
 
     #[test]
@@ -358,9 +371,9 @@ mod tests {
         let mesh = thin(0.0, 1e-5);
         let points = [mesh.vertices[0], mesh.vertices[1]];
         assert!(matches!(
-            check_rounded_angles(&mesh, &points, 0.01),
+            check_rounded_angles(&mesh, &points, 0.01, 1),
             Err(Error::Mesher { .. })
         ));
-        assert!(check_rounded_angles(&thin(0.0, 0.0), &points, 0.01).is_ok());
+        assert!(check_rounded_angles(&thin(0.0, 0.0), &points, 0.01, 1).is_ok());
     }
 }

@@ -68,6 +68,7 @@
 use crate::geom::Point;
 use crate::hex::classify::{classify, Class, Rings};
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key, DIRS};
+use crate::hex::parallel::in_parallel_from;
 use crate::hex::refine::is_fin;
 use crate::hex::subdivision::Hierarchy;
 
@@ -90,6 +91,16 @@ impl Patch {
     /// Whether the patch changes nothing: no star dropped, no triangle added.
     pub fn is_empty(&self) -> bool {
         self.dropped.is_empty() && self.triangles.is_empty()
+    }
+
+    /// Adds `later`'s entries after this patch's own: its triangles after these, and where
+    /// both name an owner for one fin, `later`'s (as `build` called on this patch for the
+    /// chains of `later` would leave it).
+    pub fn append(&mut self, later: Patch) {
+        self.dropped.extend(later.dropped);
+        self.triangles.extend(later.triangles);
+        self.fin_owner.extend(later.fin_owner);
+        self.chain_cells.extend(later.chain_cells);
     }
 }
 
@@ -262,23 +273,35 @@ pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
     Verdict::Chain(chain)
 }
 
-/// The valid chains of the current subdivision, sorted by top.
+/// Lists of at least this many hexagons, tops or chains are shared over the threads: a
+/// hexagon's class, a top's verdict or a chain's build takes microseconds, and plane-10k's
+/// few thousand chains are split too (`tests/hex_threads.rs`).
+pub const PARALLEL_MIN: usize = 512;
+
+/// The valid chains of the current subdivision, sorted by top. The hexagons' classes and the
+/// tops' verdicts only read the hierarchy and the rings: both are found over the hierarchy's
+/// threads, in runs kept in order.
 pub fn chains(h: &Hierarchy, r: &Rings, mc3: &[Key]) -> Vec<Chain> {
-    let mut tops: Vec<Key> = mc3
-        .iter()
-        .filter_map(|&k| {
-            let (class, strip) = classify(h, r, k);
-            (class == Class::MovedCenter3).then_some(k.neighbor(strip?.top()))
-        })
-        .collect();
-    tops.sort();
+    let mut tops: Vec<Key> = in_parallel_from(h.threads(), mc3, PARALLEL_MIN, |run| {
+        run.iter()
+            .filter_map(|&k| {
+                let (class, strip) = classify(h, r, k);
+                (class == Class::MovedCenter3).then_some(k.neighbor(strip?.top()))
+            })
+            .collect::<Vec<Key>>()
+    })
+    .concat();
+    tops.sort_unstable();
     tops.dedup();
-    tops.into_iter()
-        .filter_map(|t| match verdict(h, r, t) {
-            Verdict::Chain(c) => Some(c),
-            _ => None,
-        })
-        .collect()
+    in_parallel_from(h.threads(), &tops, PARALLEL_MIN, |run| {
+        run.iter()
+            .filter_map(|&t| match verdict(h, r, t) {
+                Verdict::Chain(c) => Some(c),
+                _ => None,
+            })
+            .collect::<Vec<Chain>>()
+    })
+    .concat()
 }
 
 fn lerp(a: Point, b: Point, t: f64) -> Point {

@@ -17,7 +17,6 @@
 use crate::geom::{orient2d, Point};
 use crate::hex::lattice::{FxHashMap, FxHashSet, Key, KeyIndex};
 use crate::hex::mc3::Patch;
-use crate::hex::parallel::in_parallel;
 use crate::hex::region::Region;
 use crate::hex::subdivision::Hierarchy;
 use crate::mesh::TriMesh;
@@ -63,20 +62,26 @@ pub fn extract_patched(
 /// (`extract_relocated`).
 pub type Relocate<'a> = &'a (dyn Fn(Key) -> Option<Point> + Sync);
 
+/// Gives triangles of the patch to the function it is called with, in order, when the dual
+/// emits them (`extract_relocated`).
+pub type PatchTriangles<'a> = &'a dyn Fn(&mut dyn FnMut([Key; 3]));
+
 /// `extract_patched` in `Relocated` placement, with the centres that `moved` does not hold
-/// placed by `relocate` where it gives a place: the whole dual without a table of every
-/// relocated centre (`extended::chain_relocations`), the places computed as the vertices are
-/// met (over the threads of the split descent).
+/// placed by `relocate` where it gives a place, and the triangles of `later` emitted after
+/// those of `patch`: the whole dual without a table of every relocated centre nor a list of
+/// the patch's triangles (`extended::chain_relocations`), the places computed as the vertices
+/// are met (over the threads of the split descent), the patch's triangles as they are made.
 pub fn extract_relocated(
     h: &Hierarchy,
     (moved, relocate): (&FxHashMap<Key, Point>, Relocate<'_>),
     patch: &Patch,
+    later: PatchTriangles<'_>,
 ) -> (TriMesh, Vec<Key>) {
     extract_all_from(
         h,
         (Placement::Relocated, Some(relocate)),
         moved,
-        patch,
+        (patch, Some(later)),
         PARALLEL_EXTRACT_MIN,
     )
 }
@@ -151,40 +156,58 @@ fn extract_all(
     moved: &FxHashMap<Key, Point>,
     patch: &Patch,
 ) -> (TriMesh, Vec<Key>) {
-    extract_all_from(h, (placement, None), moved, patch, PARALLEL_EXTRACT_MIN)
+    extract_all_from(
+        h,
+        (placement, None),
+        moved,
+        (patch, None),
+        PARALLEL_EXTRACT_MIN,
+    )
 }
 
 /// `extract_all`, split over threads from `min_leaves` full leaves on, with the centres
-/// `moved` does not hold placed by the `Relocate` given, if any (`extract_relocated`).
+/// `moved` does not hold placed by the `Relocate` given, if any, and the `PatchTriangles`
+/// given, if any, after the patch's own (`extract_relocated`).
 fn extract_all_from(
     h: &Hierarchy,
     (placement, relocate): (Placement, Option<Relocate<'_>>),
     moved: &FxHashMap<Key, Point>,
-    patch: &Patch,
+    (patch, later): (&Patch, Option<PatchTriangles<'_>>),
     min_leaves: usize,
 ) -> (TriMesh, Vec<Key>) {
     let mut b = Builder::new(h, placement, moved, &patch.dropped, true);
     b.relocate = relocate;
+    // `later`'s triangles, when they were built to find the centres they use (once is
+    // enough: they are emitted from this list in the order `later` gave them).
+    let mut later_triangles: Option<Vec<[Key; 3]>> = None;
     if h.full_leaves < min_leaves {
         descend(h, root_triangles(h), &|_| true, &mut |tri| b.emit(tri));
     } else {
         // The centres the patch's triangles use: the parts' vertices among them go into the
         // index, where `emit_patch` finds them.
-        // Gathered over the threads, a set a run of triangles, merged into the first run's.
-        let mut sets = in_parallel(h.threads(), &patch.triangles, |run| {
-            let mut set = FxHashSet::with_capacity_and_hasher(run.len(), Default::default());
-            set.extend(run.iter().flatten().map(|c| c.canonical()));
-            set
-        })
-        .into_iter();
-        let mut wanted: FxHashSet<Key> = sets.next().unwrap_or_default();
-        for set in sets {
-            wanted.extend(set);
+        let mut wanted: FxHashSet<Key> = FxHashSet::default();
+        wanted.extend(patch.triangles.iter().flatten().map(|c| c.canonical()));
+        if let Some(later) = later {
+            let mut triangles = Vec::new();
+            later(&mut |tri| {
+                wanted.extend(tri.map(|c| c.canonical()));
+                triangles.push(tri);
+            });
+            later_triangles = Some(triangles);
         }
         b = emit_split(h, b, &wanted);
     }
     for tri in &patch.triangles {
         b.emit_patch(*tri);
+    }
+    match (later_triangles, later) {
+        (Some(triangles), _) => {
+            for tri in triangles {
+                b.emit_patch(tri);
+            }
+        }
+        (None, Some(later)) => later(&mut |tri| b.emit_patch(tri)),
+        (None, None) => {}
     }
     b.finish()
 }
@@ -773,7 +796,9 @@ pub fn first_inverted_over(mesh: &TriMesh, threads: usize) -> Option<usize> {
 mod tests {
     use super::*;
     use crate::hex::classify::rings;
-    use crate::hex::extended::{chain_relocations, mesh_extended, relocated, relocations};
+    use crate::hex::extended::{
+        chain_relocations, chain_triangles, mesh_extended, relocated, relocations,
+    };
     use crate::hex::key::DIRS;
     use crate::{Params, Pslg};
 
@@ -855,7 +880,7 @@ mod tests {
         );
         for placement in [Placement::Relocated, Placement::Plain] {
             let serial = extract_where(h, placement, &moved, &patch, true, |_| true);
-            let split = extract_all_from(h, (placement, None), &moved, &patch, 0);
+            let split = extract_all_from(h, (placement, None), &moved, (&patch, None), 0);
             assert!(!serial.0.triangles.is_empty());
             assert_eq!(serial.0.triangles, split.0.triangles, "{placement:?}");
             assert_eq!(serial.1, split.1, "{placement:?}");
@@ -870,23 +895,25 @@ mod tests {
         // The relocated centres computed as the dual meets them, with only the chains' in a
         // table, give the same dual as the table of every relocated centre, serial or split.
         let r = rings(h);
-        let (chained, chain_patch) = chain_relocations(h, &r);
+        let (chained, chain_patch, chains) = chain_relocations(h, &r);
         assert!(
             chained.len() < moved.len(),
             "the table holds the chains only"
         );
-        assert_eq!(chain_patch.triangles, patch.triangles);
+        assert!(chain_patch.triangles.is_empty());
         assert_eq!(chain_patch.dropped, patch.dropped);
-        assert_eq!(chain_patch.fin_owner, patch.fin_owner);
-        assert_eq!(chain_patch.chain_cells, patch.chain_cells);
+        let mut streamed = Vec::new();
+        chain_triangles(h, &r, &chains, &mut |t| streamed.push(t));
+        assert_eq!(streamed, patch.triangles);
         let relocate = |k: Key| relocated(h, &r, k);
+        let later = |emit: &mut dyn FnMut([Key; 3])| chain_triangles(h, &r, &chains, emit);
         let table = extract_where(h, Placement::Relocated, &moved, &patch, true, |_| true);
         for min in [0, usize::MAX] {
             let lazy = extract_all_from(
                 h,
                 (Placement::Relocated, Some(&relocate)),
                 &chained,
-                &chain_patch,
+                (&chain_patch, Some(&later)),
                 min,
             );
             assert_eq!(table.0.triangles, lazy.0.triangles, "split from {min}");

@@ -92,16 +92,6 @@ impl Patch {
     pub fn is_empty(&self) -> bool {
         self.dropped.is_empty() && self.triangles.is_empty()
     }
-
-    /// Adds `later`'s entries after this patch's own: its triangles after these, and where
-    /// both name an owner for one fin, `later`'s (as `build` called on this patch for the
-    /// chains of `later` would leave it).
-    pub fn append(&mut self, later: Patch) {
-        self.dropped.extend(later.dropped);
-        self.triangles.extend(later.triangles);
-        self.fin_owner.extend(later.fin_owner);
-        self.chain_cells.extend(later.chain_cells);
-    }
 }
 
 /// A run of n consecutive MOVED_CENTER_3 hexagons T + e_s, …, T + e_{s+n-1} around their
@@ -273,9 +263,9 @@ pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
     Verdict::Chain(chain)
 }
 
-/// Lists of at least this many hexagons, tops or chains are shared over the threads: a
-/// hexagon's class, a top's verdict or a chain's build takes microseconds, and plane-10k's
-/// few thousand chains are split too (`tests/hex_threads.rs`).
+/// Lists of at least this many hexagons or tops are shared over the threads (`chains`): a
+/// hexagon's class or a top's verdict takes microseconds, and plane-10k's lists are split
+/// too (`tests/hex_threads.rs`).
 pub const PARALLEL_MIN: usize = 512;
 
 /// The valid chains of the current subdivision, sorted by top. The hexagons' classes and the

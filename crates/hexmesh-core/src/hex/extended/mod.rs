@@ -110,7 +110,7 @@ use std::time::Instant;
 use crate::error::{Error, Result};
 use crate::hex::classify::Rings;
 use crate::hex::dual::{self, Placement};
-use crate::hex::lattice::KeySet;
+use crate::hex::lattice::{Key, KeySet};
 use crate::hex::refine::refine_simple;
 use crate::hex::size;
 use crate::hex::subdivision::{Hierarchy, Stop};
@@ -120,7 +120,7 @@ use crate::progress::{self, Progress};
 use crate::quality::{Bounds, HEX};
 
 pub use check::{delaunay_violations, settle_rounding};
-pub use relocate::{chain_relocations, relocated, relocations, relocations_of};
+pub use relocate::{chain_relocations, chain_triangles, relocated, relocations, relocations_of};
 pub(crate) use repair::extend_and_verify;
 pub use rings::RingState;
 use rings::{apply_placed, rings_with_flips};
@@ -433,10 +433,11 @@ fn full_leaves_and_rings(h: &mut Hierarchy) -> (KeySet, Rings) {
 /// (`extend_and_verify` has verified it).
 pub(crate) fn final_dual(h: &Hierarchy, state: &RingState) -> TriMesh {
     let r = rings_with_flips(h, state);
-    let (mut moved, patch) = chain_relocations(h, &r);
+    let (mut moved, patch, chains) = chain_relocations(h, &r);
     apply_placed(&mut moved, state);
     let relocate = |k| relocated(h, &r, k);
-    dual::extract_relocated(h, (&moved, &relocate), &patch).0
+    let later = |emit: &mut dyn FnMut([Key; 3])| chain_triangles(h, &r, &chains, emit);
+    dual::extract_relocated(h, (&moved, &relocate), &patch, &later).0
 }
 
 #[cfg(test)]

@@ -5,8 +5,8 @@
 use crate::geom::Point;
 use crate::hex::classify::{classify, fin_class, fin_mask, Class, Rings, Role};
 use crate::hex::lattice::{FxHashMap, Key};
-use crate::hex::mc3::{self, Patch};
-use crate::hex::parallel::{in_parallel, in_parallel_from};
+use crate::hex::mc3::{self, Chain, Patch};
+use crate::hex::parallel::{each_in_parallel, in_parallel};
 use crate::hex::subdivision::Hierarchy;
 
 /// The relocated centres of Sec. 5.4, keyed by `Key::canonical`, and the dual rebuilt around
@@ -59,43 +59,54 @@ pub fn relocations_of(
     (moved, patch)
 }
 
-/// `relocations` of the whole subdivision without its table of every moved centre: only the
-/// centres the MOVED_CENTER_3 chains place (`mc3::build`) are in the table, with the chains'
-/// patch, and every other relocated centre is `relocated`, computed where the dual asks for
-/// it. The dual looks the table up first, as the chains' places replace the others in
-/// `relocations`, so it gets the same places. At plane-100k the whole table was about 15
-/// bytes an output triangle at the peak.
-///
-/// The chains are built over the hierarchy's threads, a run of them a thread, each run into a
-/// table and a patch of its own, merged in the order of the runs: `mc3::build` only adds to
-/// what it is given, so each run holds what the serial loop adds for its chains, and where
-/// two chains place one centre (or own one fin), the later chain's entry is merged later and
-/// wins, as in the loop. (The chains were built twice before, once for the table on one
-/// thread and once for the triangles; at plane-100k, 77,304 chains and 1.55 million
-/// triangles.)
-pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch) {
+/// `relocations` of the whole subdivision without its table of every moved centre, and
+/// without the patch's triangles: only the centres the MOVED_CENTER_3 chains place
+/// (`mc3::build`) are in the table, every other relocated centre is `relocated`, computed
+/// where the dual asks for it, and the chains are returned for `chain_triangles` to give
+/// their triangles when the dual emits them. The dual looks the table up first, as the
+/// chains' places replace the others in `relocations`, so it gets the same places, and the
+/// triangles come chain by chain in the order of `relocations`' patch. At plane-100k the
+/// whole table and the patch's triangles were about 15 and 6 bytes an output triangle at the
+/// peak.
+pub fn chain_relocations(h: &Hierarchy, r: &Rings) -> (FxHashMap<Key, Point>, Patch, Vec<Chain>) {
     // Only a hexagon with fins can be MOVED_CENTER_3 (`classify` reads its fins first).
     let mc3_keys: Vec<Key> = h.full_leaves_where(|key| {
         let mask = fin_mask(h, key);
         mask != 0 && fin_class(mask).0 == Class::MovedCenter3
     });
+    let mut moved = FxHashMap::default();
+    let mut patch = Patch::default();
     let chains = mc3::chains(h, r, &mc3_keys);
-    drop(mc3_keys);
-    let mut runs = in_parallel_from(h.threads(), &chains, mc3::PARALLEL_MIN, |run| {
-        let mut moved = FxHashMap::default();
-        let mut patch = Patch::default();
-        for &chain in run {
-            mc3::build(h, r, chain, &mut moved, &mut patch);
-        }
-        (moved, patch)
-    })
-    .into_iter();
-    let (mut moved, mut patch) = runs.next().unwrap_or_default();
-    for (later_moved, later_patch) in runs {
-        moved.extend(later_moved);
-        patch.append(later_patch);
+    for &chain in &chains {
+        mc3::build(h, r, chain, &mut moved, &mut patch);
+        // Given again, chain by chain, by `chain_triangles`.
+        patch.triangles.clear();
     }
-    (moved, patch)
+    (moved, patch, chains)
+}
+
+/// The triangles `mc3::build` makes for each of `chains` in turn, given to `emit` in order
+/// (`chain_relocations`): `mc3::build` only adds to the table and the patch it is given, so a
+/// chain's triangles do not depend on the chains before it.
+///
+/// Runs of chains are built over the hierarchy's threads (each run with a table of its own),
+/// a few runs a thread at a time, and their triangles given in order.
+pub fn chain_triangles(h: &Hierarchy, r: &Rings, chains: &[Chain], emit: &mut dyn FnMut([Key; 3])) {
+    const RUN: usize = 2048;
+    let runs: Vec<&[Chain]> = chains.chunks(RUN).collect();
+    for batch in runs.chunks(4 * h.threads()) {
+        let parts = each_in_parallel(h.threads(), batch, |run| {
+            let mut scratch = FxHashMap::default();
+            let mut patch = Patch::default();
+            for &chain in *run {
+                mc3::build(h, r, chain, &mut scratch, &mut patch);
+            }
+            patch.triangles
+        });
+        for t in parts.into_iter().flatten() {
+            emit(t);
+        }
+    }
 }
 
 /// Where Sec. 5.4 puts the dual vertex with canonical key `key`, when it is the centre of a

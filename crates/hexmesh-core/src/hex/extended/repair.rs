@@ -6,7 +6,7 @@
 //! the splice keep the work of a repair proportional to what it changes.
 
 use super::check::{offending_leaves, BadTriangle};
-use super::relocate::{chain_relocations, relocated, relocations_of};
+use super::relocate::{chain_relocations, chain_triangles, relocated, relocations_of};
 use super::rings::{apply_flips, apply_placed, flip, switch_corner, RingCache, RingState};
 use super::rules::{around, extended_actions, Why};
 use super::settle::{polish_rings, record_moves, settle_contested, Moves, SettleCells, SettlePass};
@@ -385,12 +385,11 @@ impl<'a> Repair<'a> {
     fn extract(&mut self, r: &Rings, around_all: bool) -> Checked {
         let h = &*self.h;
         let Some(c) = &self.changed else {
-            let (mut moved, mut patch) = chain_relocations(h, r);
+            let (mut moved, patch, chains) = chain_relocations(h, r);
             apply_placed(&mut moved, self.state);
             let relocate = |k: Key| relocated(h, r, k);
-            let (mesh, keys) = dual::extract_relocated(h, (&moved, &relocate), &patch);
-            // The check asks the patch only who owns a fin and which cells are the chains'.
-            patch.triangles = Vec::new();
+            let later = |emit: &mut dyn FnMut([Key; 3])| chain_triangles(h, r, &chains, emit);
+            let (mesh, keys) = dual::extract_relocated(h, (&moved, &relocate), &patch, &later);
             return Checked {
                 mesh,
                 keys,

@@ -266,7 +266,7 @@ pub fn verdict(h: &Hierarchy, r: &Rings, top: Key) -> Verdict {
 /// Lists of at least this many hexagons or tops are shared over the threads (`chains`): a
 /// hexagon's class or a top's verdict takes microseconds, and plane-10k's lists are split
 /// too (`tests/hex_threads.rs`).
-pub const PARALLEL_MIN: usize = 512;
+const PARALLEL_MIN: usize = 512;
 
 /// The valid chains of the current subdivision, sorted by top. The hexagons' classes and the
 /// tops' verdicts only read the hierarchy and the rings: both are found over the hierarchy's

@@ -196,3 +196,24 @@ fn a_lattice_strip_ending_inside_a_sharp_corner_meets_a_rung_at_its_tip() {
     );
     assert_eq!(events.last().map(|e| e.0), Some("fills"), "{events:?}");
 }
+
+#[test]
+fn a_segment_far_shorter_than_its_neighbours_is_meshed_on_a_band_graded_along_the_boundary() {
+    // Case 22 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123): a short segment
+    // beside long ones. Evening the band along the boundary made 850,039 leaves (412 times
+    // the graded band's) and ran past the fuzz budget; the band graded along the boundary
+    // meshes it with a few thousand triangles.
+    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case22-short-long.poly";
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    let run = meshed_within_the_promise(path, &input);
+    assert!(
+        run.mesh.triangles.len() < 20_000,
+        "{}",
+        run.mesh.triangles.len()
+    );
+    let events = watched_events(&input, &run);
+    assert!(
+        events.contains(&("graded band along the boundary", None)),
+        "{events:?}"
+    );
+}

@@ -8,6 +8,13 @@
 //! `fuzz-seed20261123-case3-holes.poly`: a miss of 1.7° after one erosion), not yet case
 //! 16; and case 11, which met the bounds by erosion alone, now takes another path and
 //! fails. It is a search, not a construction.
+//!
+//! The ladder is solved piece by piece in order and reports the first piece it cannot join,
+//! so a move that mends the corner's piece shows as a failure further on, often by more:
+//! such a move is kept (`elsewhere`), where comparing the margins had put the corner back
+//! (on fuzz case 14, with an earlier form of the graded band, a move of 0.3 side mended a
+//! miss of 3.3° and was undone for a later piece's 5.1°). A near miss whose moves mend it does not count against the
+//! band's limit of moved corners; one whose moves do not, does.
 
 use super::cut::{Prepared, Segments};
 use crate::geom::{angle_deg, orient2d, Point};
@@ -63,4 +70,18 @@ pub fn places(mesh: &TriMesh, prep: &Prepared, segments: &Segments, v: u32) -> V
         }
     }
     out
+}
+
+/// How far (in `v`'s lattice sides) a failure must lie from a moved corner `v` for the move to
+/// count as mending `v`'s piece of the ladder.
+const ELSEWHERE: f64 = 6.0;
+
+/// Whether lattice vertex `w`, where a fill failed after `v` moved, lies beyond `ELSEWHERE`
+/// of `v`'s sides from it, taken as beyond the pieces of the ladder that hold `v` (a piece
+/// spans the front corners between two rungs, a side or two apart; a failing piece merged
+/// with its neighbours spans a few more). A failure nearer, or at `v` itself, is the move's
+/// own result and is compared by its margin.
+pub fn elsewhere(prep: &Prepared, v: u32, w: u32) -> bool {
+    let (p, q) = (prep.position(v), prep.position(w));
+    w != v && crate::geom::dist(p, q) > ELSEWHERE * prep.side(v)
 }

@@ -22,7 +22,10 @@
 //! `choose` evens the band unless that makes the tree more than `GRADED_ABOVE` times the
 //! graded one: the even band meshes more of the fuzz domains (where the size changes along
 //! a polygon's sides, the graded band's steps fail more often than the even band's finer
-//! lattice costs), the graded one the domains the even band cannot afford.
+//! lattice costs), the graded one the domains the even band cannot afford. A band even only
+//! near the input corners and points (within 3 + 1.5 / sin(α/2) leaf sides of a corner of
+//! angle α) and graded elsewhere met 71 of the first 100 fuzz domains, against the even
+//! band's 88 (METHODOLOGY, 2026-12-07).
 
 use super::cut;
 use crate::rhomb::lattice::{self, Cell, Frame, AROUND};

@@ -42,7 +42,8 @@
 //! of Sec. 5.1 and 5.2 case 2, `band`: every leaf the boundary touches gets first neighbours
 //! of its own size, so the fronts the ladder joins are of one size locally, unless that
 //! makes the tree 100 times the one whose band is graded along the boundary; a graded band's
-//! steps are mended by `relax`, as a search, not by the paper's construction. In
+//! steps are left to the ladder, `relax` and the erosions, a search rather than the paper's
+//! construction. In
 //! place of the border-box cases and Sec. 5.6–5.8, whose figures our copy of the paper
 //! lacks, the ladder and the corner tips of `fill`. A moved corner left near another front
 //! corner is dropped before the first fill (`cut::drop_short_fronts`); where no ladder
@@ -81,10 +82,11 @@ use input::Domain;
 
 /// Meshes the polygonal domain `input` (paper 001 Sec. 3–5): reads it as a permitted domain
 /// (Sec. 3), builds its quad-tree (steps 1–3), evens or grades the rhombs along the
-/// boundary (`band`), centres the single points (steps 5, 12), triangulates the leaves (step 10),
-/// cuts them by the boundary (`cut`, steps 8–9) and fills the gaps to the polygons (`fill`,
-/// steps 11, 13–16), eroding the lattice corner where a fill fails and cutting again, and
-/// splitting the rhombs where the kept lattice does not separate two polygons. The result
+/// boundary (`band`), centres the single points (steps 5, 12), triangulates the leaves
+/// (step 10), cuts them by the boundary (`cut`, steps 8–9) and fills the gaps to the
+/// polygons (`fill`, steps 11, 13–16), eroding the lattice corner where a fill fails and
+/// cutting again, and splitting the rhombs where the kept lattice does not separate two
+/// polygons. The result
 /// is checked before it is returned: a valid, conforming triangulation with every input
 /// point a vertex, and every angle in [30°, 90°] within the rounding allowance but at the
 /// whole input corners sharper than 30°. The refusals of `input::permitted` are input errors
@@ -222,8 +224,7 @@ fn build(
             let cut = cut::cut(&lattice, &prepared, &eroded);
             fills += 1;
             crate::progress::round(progress, FILLS[finer], fills);
-            let r0 = fill::fill(&domain, &segments, &cut, &corner_side, &mut memo);
-            match r0 {
+            match fill::fill(&domain, &segments, &cut, &corner_side, &mut memo) {
                 Ok(f) => {
                     // The whole sharp corners, by their index in the output.
                     let whole: std::collections::BTreeSet<usize> =

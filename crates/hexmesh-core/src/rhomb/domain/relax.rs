@@ -13,8 +13,8 @@
 //! so a move that mends the corner's piece shows as a failure further on, often by more:
 //! such a move is kept (`elsewhere`), where comparing the margins had put the corner back
 //! (on fuzz case 14, with an earlier form of the graded band, a move of 0.3 side mended a
-//! miss of 3.3° and was undone for a later piece's 5.1°). A near miss whose moves mend it does not count against the
-//! band's limit of moved corners; one whose moves do not, does.
+//! miss of 3.3° and was undone for a later piece's 5.1°). A near miss whose moves mend it
+//! does not count against the band's limit of moved corners; one whose moves do not, does.
 
 use super::cut::{Prepared, Segments};
 use crate::geom::{angle_deg, orient2d, Point};

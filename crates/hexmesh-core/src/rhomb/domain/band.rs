@@ -6,18 +6,18 @@
 //!   size. The fronts the ladder joins are then of one size locally, at the price of the
 //!   finest size spreading along the whole boundary: a segment a thousandth of its
 //!   neighbours' length makes a million triangles (fuzz case 14 of seed 20261123: 554,470
-//!   leaves against 5,782 graded).
+//!   leaves against 4,528 graded).
 //! - **Graded** (`Band::Graded`): no touched leaf has a coarser neighbour off the boundary;
 //!   along the boundary two touched leaves may differ 2:1, and a coarse touched leaf may
 //!   have finer neighbours off it. The rhombs then change size along a segment, where a
-//!   fine front meets a coarse one a row deeper; the ladder misses there by a few degrees
-//!   (3.3° to 5° on fuzz case 14), and `relax` mends most such steps by moving the corner
-//!   the ladder names. Asking also that a touched leaf's finer
-//!   neighbours off the boundary take its size spreads the finest size along the whole
-//!   boundary: at a step, the fine leaves inside the coarse leaf's fine touched neighbour
-//!   lie beside it, so that rule's only tree is the even band (checked: 395 s for the
-//!   rectangle of the tests, every touched leaf of one level). A work list that applied it
-//!   only when a leaf was made reached a graded tree that depended on the order of splits.
+//!   fine front meets a coarse one a row deeper; with an earlier rule the ladder missed
+//!   there by 3.3° to 5° on fuzz case 14, and `relax`, moving the corner the ladder names,
+//!   mended those steps. Asking also that a touched leaf's finer neighbours off the
+//!   boundary take its size spreads the finest size along the whole boundary: at a step,
+//!   the fine leaves inside the coarse leaf's fine touched neighbour lie beside it, so that
+//!   rule's only tree is the even band (checked: 395 s for the rectangle of the tests,
+//!   every touched leaf of one level). A work list that applied it only when a leaf was
+//!   made (that earlier rule) reached a graded tree that depended on the order of splits.
 //!
 //! `choose` evens the band unless that makes the tree more than `GRADED_ABOVE` times the
 //! graded one: the even band meshes more of the fuzz domains (where the size changes along

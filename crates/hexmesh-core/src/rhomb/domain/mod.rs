@@ -86,11 +86,11 @@ use input::Domain;
 /// (step 10), cuts them by the boundary (`cut`, steps 8–9) and fills the gaps to the
 /// polygons (`fill`, steps 11, 13–16), eroding the lattice corner where a fill fails and
 /// cutting again, and splitting the rhombs where the kept lattice does not separate two
-/// polygons. The result
-/// is checked before it is returned: a valid, conforming triangulation with every input
-/// point a vertex, and every angle in [30°, 90°] within the rounding allowance but at the
-/// whole input corners sharper than 30°. The refusals of `input::permitted` are input errors
-/// naming a segment or point; a budget stops the run with its reason.
+/// polygons. The result is checked before it is returned: a valid, conforming triangulation
+/// with every input point a vertex, and every angle in [30°, 90°] within the rounding
+/// allowance but at the whole input corners sharper than 30°. The refusals of
+/// `input::permitted` are input errors naming a segment or point; a budget stops the run
+/// with its reason.
 ///
 /// Coordinates far from the origin (projected map data) are meshed shifted by an offset that
 /// Sterbenz's lemma makes exact for every input point (`offset`), and shifted back: the

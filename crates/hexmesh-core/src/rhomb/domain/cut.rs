@@ -167,7 +167,11 @@ impl<'a> Cut<'a> {
 /// kept before any erosion (inside the domain and untouched by it, no corner deleted, in
 /// bounds after the moves, no moved corner on a short front edge: `drop_short_fronts`).
 pub struct Prepared {
-    edge: FxHashMap<(u32, u32), usize>,
+    edge: Edges,
+    /// Per triangle and side (from corner e to e + 1), the triangle across it, or
+    /// `u32::MAX`: a cut reads it three times a triangle in each pass (it looked the edges
+    /// up in `edge`, a sixth of a large domain's run).
+    across: Vec<[u32; 3]>,
     neighbours: Vec<Vec<u32>>,
     position: Vec<Point>,
     side: Vec<f64>,
@@ -195,12 +199,53 @@ impl Prepared {
     pub fn triangles_at(&self, v: u32) -> impl Iterator<Item = usize> + '_ {
         self.neighbours[v as usize]
             .iter()
-            .filter_map(move |&b| self.edge.get(&(v, b)).copied())
+            .filter_map(move |&b| self.edge.get(v, b))
     }
 
     /// Moves lattice vertex `v` to `p` (`relax`, which keeps its triangles in bounds).
     pub fn relocate(&mut self, v: u32, p: Point) {
         self.position[v as usize] = p;
+    }
+}
+
+/// The triangle of each directed lattice edge, by the edge's first corner (rows in
+/// triangle order): a look-up scans a row of about six. It replaced a hash map of the
+/// edges, whose millions of inserts and look-ups were a tenth of a large domain's run.
+#[derive(Debug)]
+struct Edges {
+    start: Vec<u32>,
+    entries: Vec<(u32, u32)>,
+}
+
+impl Edges {
+    fn new(nv: usize, triangles: &[[u32; 3]]) -> Edges {
+        let mut start = vec![0u32; nv + 1];
+        for t in triangles {
+            for &a in t {
+                start[a as usize + 1] += 1;
+            }
+        }
+        for v in 0..nv {
+            start[v + 1] += start[v];
+        }
+        let mut fill = start.clone();
+        let mut entries = vec![(0u32, 0u32); 3 * triangles.len()];
+        for (k, t) in triangles.iter().enumerate() {
+            for e in 0..3 {
+                let a = t[e] as usize;
+                entries[fill[a] as usize] = (t[(e + 1) % 3], k as u32);
+                fill[a] += 1;
+            }
+        }
+        Edges { start, entries }
+    }
+
+    /// The triangle with directed edge (a, b) (the last in triangle order, should two have
+    /// it), if any.
+    fn get(&self, a: u32, b: u32) -> Option<usize> {
+        let row =
+            &self.entries[self.start[a as usize] as usize..self.start[a as usize + 1] as usize];
+        row.iter().rev().find(|e| e.0 == b).map(|e| e.1 as usize)
     }
 }
 
@@ -216,16 +261,12 @@ pub fn prepare(
     let nv = mesh.vertices.len();
     let nt = mesh.triangles.len();
     // Edge adjacency and the neighbours of every vertex.
-    // Fx hashing: the lattice's edges are millions on a long boundary, and SipHash cost a
-    // third of the preparation.
-    let mut edge: FxHashMap<(u32, u32), usize> =
-        FxHashMap::with_capacity_and_hasher(3 * nt, Default::default());
+    let edge = Edges::new(nv, &mesh.triangles);
     let mut neighbours: Vec<Vec<u32>> = vec![Vec::new(); nv];
     let mut side = vec![0.0; nv];
-    for (k, t) in mesh.triangles.iter().enumerate() {
+    for t in &mesh.triangles {
         for e in 0..3 {
             let (a, b) = (t[e], t[(e + 1) % 3]);
-            edge.insert((a, b), k);
             neighbours[a as usize].push(b);
             let l = dist(mesh.vertices[a as usize], mesh.vertices[b as usize]);
             side[a as usize] += l;
@@ -235,6 +276,16 @@ pub fn prepare(
         list.sort_unstable();
         list.dedup();
     }
+    let across: Vec<[u32; 3]> = mesh
+        .triangles
+        .iter()
+        .map(|t| {
+            [0, 1, 2].map(|e| {
+                edge.get(t[(e + 1) % 3], t[e])
+                    .map_or(u32::MAX, |o| o as u32)
+            })
+        })
+        .collect();
     // Mean edge length: each vertex's outgoing edges were summed once per triangle.
     let mut out_count = vec![0usize; nv];
     for t in &mesh.triangles {
@@ -295,7 +346,7 @@ pub fn prepare(
         while let Some(k) = stack.pop() {
             let t = mesh.triangles[k];
             for e in 0..3 {
-                if let Some(&o) = edge.get(&(t[(e + 1) % 3], t[e])) {
+                if let Some(o) = edge.get(t[(e + 1) % 3], t[e]) {
                     if !touched[o] && region[o] == usize::MAX {
                         region[o] = r;
                         stack.push(o);
@@ -384,6 +435,7 @@ pub fn prepare(
     drop_short_fronts(mesh, &edge, &neighbours, &position, &side, &mut keep);
     Prepared {
         edge,
+        across,
         neighbours,
         position,
         side,
@@ -406,7 +458,7 @@ pub fn prepare(
 /// place where front edges change.
 fn drop_short_fronts(
     mesh: &TriMesh,
-    edge: &FxHashMap<(u32, u32), usize>,
+    edge: &Edges,
     neighbours: &[Vec<u32>],
     position: &[Point],
     side: &[f64],
@@ -415,7 +467,7 @@ fn drop_short_fronts(
     let moved = |v: usize| position[v] != mesh.vertices[v];
     let short_front = |v: usize, keep: &[bool]| {
         neighbours[v].iter().any(|&b| {
-            let kept = |e: (u32, u32)| edge.get(&e).is_some_and(|&k| keep[k]);
+            let kept = |(a, b): (u32, u32)| edge.get(a, b).is_some_and(|k| keep[k]);
             let b = b as usize;
             kept((v as u32, b as u32)) != kept((b as u32, v as u32))
                 && dist(position[v], position[b]) < SHORT_FRONT * side[v].min(side[b])
@@ -430,7 +482,7 @@ fn drop_short_fronts(
         let mut next = Vec::new();
         for &v in &doomed {
             for &b in &neighbours[v] {
-                if let Some(&k) = edge.get(&(v as u32, b)) {
+                if let Some(k) = edge.get(v as u32, b) {
                     keep[k] = false;
                 }
                 if moved(b as usize) {
@@ -452,7 +504,7 @@ const SHORT_FRONT: f64 = 0.75;
 /// and traces the fronts.
 pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
     let (nv, nt) = (mesh.vertices.len(), mesh.triangles.len());
-    let (edge, position, side) = (&prep.edge, &prep.position[..], &prep.side[..]);
+    let (across, position, side) = (&prep.across, &prep.position[..], &prep.side[..]);
     let mut keep = prep.kept.clone();
     for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
         if t.iter().any(|&v| eroded[v as usize]) {
@@ -462,11 +514,10 @@ pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
     // The kept triangles' sides whose other side is not kept, the kept region on the left.
     let front_edges = |keep: &[bool]| -> Vec<(u32, u32)> {
         let mut out = Vec::new();
-        for (t, _) in mesh.triangles.iter().zip(keep).filter(|x| *x.1) {
+        for ((t, o), _) in mesh.triangles.iter().zip(across).zip(keep).filter(|x| *x.1) {
             for e in 0..3 {
-                let (a, b) = (t[e], t[(e + 1) % 3]);
-                if !edge.get(&(b, a)).is_some_and(|&o| keep[o]) {
-                    out.push((a, b));
+                if o[e] == u32::MAX || !keep[o[e] as usize] {
+                    out.push((t[e], t[(e + 1) % 3]));
                 }
             }
         }
@@ -516,5 +567,24 @@ pub fn cut<'a>(mesh: &TriMesh, prep: &'a Prepared, eroded: &[bool]) -> Cut<'a> {
         side,
         kept,
         loops,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn an_edge_is_found_in_the_triangle_that_has_it_and_the_last_of_two_wins() {
+        // Two triangles sharing edge 1-2, and a third repeating the first's edge 0-1.
+        let triangles = [[0, 1, 2], [2, 1, 3], [0, 1, 4]];
+        let edges = Edges::new(5, &triangles);
+        assert_eq!(edges.get(1, 2), Some(0));
+        assert_eq!(edges.get(2, 1), Some(1));
+        assert_eq!(edges.get(3, 2), Some(1));
+        assert_eq!(edges.get(2, 3), None);
+        assert_eq!(edges.get(0, 1), Some(2));
+        assert_eq!(edges.get(4, 0), Some(2));
+        assert_eq!(edges.get(4, 3), None);
     }
 }

@@ -163,7 +163,8 @@ pub fn corner(
         .unwrap_or(n);
     let cut = if tip == Tip::Wedge {
         let ws: Vec<Point> = inner[..w_end].iter().rev().copied().collect();
-        wedge(c, alpha, &ws, &inner[v_start..])
+        let vs = &inner[v_start..];
+        wedge(c, alpha, &ws, vs, &vec![vs.len(); ws.len()])
     } else {
         Vec::new()
     };

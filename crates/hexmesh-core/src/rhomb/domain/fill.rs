@@ -12,12 +12,13 @@
 //! where the front ends nearest it. A ladder that keeps no [30°, 90°] triangulation names
 //! the front corner where its worst triangle is: the caller erodes it and cuts again.
 
-use std::collections::HashMap;
+use crate::hex::fxhash::FxHashMap;
 
+use super::blocks::Blocks;
 use super::boxes::{box_points, score, Floor, Vertex};
 use super::cut::{Cut, Segments};
 use super::input::Domain;
-use super::pieces::{solve, Chain, Pieces};
+use super::pieces::{solve, Chain, Pieces, Words};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 use crate::quality::feature_gap::point_segment_distance;
 
@@ -46,8 +47,17 @@ pub struct Fill {
 #[derive(Debug, Default)]
 pub struct Memo {
     /// Each table with a number in order of first use (for the pieces' keys).
-    wedges: HashMap<Vec<u64>, (u64, std::rc::Rc<WedgeTable>)>,
+    wedges: FxHashMap<Words, (u64, std::sync::Arc<WedgeTable>)>,
     pieces: Pieces,
+}
+
+impl Memo {
+    /// An empty memo whose pieces are solved on `threads` threads (`pieces::solve`).
+    pub fn with_threads(threads: usize) -> Memo {
+        let mut memo = Memo::default();
+        memo.pieces.threads = threads;
+        memo
+    }
 }
 
 /// A wedge's table (`wedge`): the best cut of (c, ws[a], vs[b]) for every a, b.
@@ -146,12 +156,17 @@ pub enum WedgeStep {
 /// W or V and its third corner on the other, for every a, b (`ws`, `vs` by distance from
 /// c): the smallest angle's margin over 30° (the angle at c exempt when the corner, `alpha`
 /// degrees, is sharper than 30°), or −∞ when there is none.
-pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point]) -> WedgeTable {
+///
+/// Only the cells (a, b) with b < `rows[a]` are computed (`rows` not increasing, at most
+/// `vs.len()`); the others stay −∞. A cell reads only cells below and left of it, so each
+/// computed cell is what the whole table would hold.
+pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point], rows: &[usize]) -> WedgeTable {
     const SPAN: usize = 24;
     let (na, nb) = (ws.len(), vs.len());
+    debug_assert!(rows.len() == na && rows.windows(2).all(|r| r[0] >= r[1]));
     let mut best = vec![vec![(f64::NEG_INFINITY, WedgeStep::Tip); nb]; na];
     for a in 0..na {
-        for b in 0..nb {
+        for b in 0..rows[a].min(nb) {
             let tip = if alpha < 30.0 {
                 whole_corner(c, vs[b], ws[a])
             } else {
@@ -221,7 +236,7 @@ pub fn wedge_triangles(
 
 /// A corner's wedge: its W and V points (indices into the inner chain, by distance from the
 /// corner) and its table (`wedge`).
-type Wedge = (Vec<usize>, Vec<usize>, std::rc::Rc<WedgeTable>);
+type Wedge = (Vec<usize>, Vec<usize>, std::sync::Arc<WedgeTable>);
 
 /// How many points back a side along a polygon side may reach (about three boxes).
 const SIDE_SPAN: usize = 48;
@@ -527,6 +542,32 @@ fn fill_polygon(
             (fpos[i], r)
         })
         .collect();
+    // How far back a side along the chain may reach: a few boxes along a side; from a
+    // corner's rays or the side after it, back over the whole tip to the side before (far
+    // back at a sharp corner, whose wedge spans many points on both sides).
+    let mut back: Vec<usize> = (0..n).map(|k| k.saturating_sub(SIDE_SPAN)).collect();
+    for (j, _) in place
+        .iter()
+        .enumerate()
+        .filter(|x| matches!(x.1, Place::Corner(_)))
+    {
+        let Place::Corner(c) = place[j] else { continue };
+        let reach = if alpha[c] < 90.0 {
+            SHARP_SPAN
+        } else {
+            SIDE_SPAN
+        };
+        let from = j.saturating_sub(reach);
+        let mut k = j;
+        while k < n
+            && (k == j
+                || matches!(place[k], Place::Ray(..))
+                || k < j + reach + 1 + tip_len(&place, j))
+        {
+            back[k] = back[k].min(from);
+            k += 1;
+        }
+    }
     // The wedges of corners below 90°: W points (the side before, by distance from c) and V
     // points (the side after), as indices into `inner`.
     let mut wedges: Vec<Option<Wedge>> = vec![None; nc];
@@ -559,26 +600,45 @@ fn fill_polygon(
         }
         ws.sort_by(|a, b| a.0.total_cmp(&b.0));
         vs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
-        let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();
-        let key: Vec<u64> = [ring[j][0], ring[j][1], alpha[j], wp.len() as f64]
-            .into_iter()
-            .chain(wp.iter().chain(&vp).flat_map(|p| [p[0], p[1]]))
-            .map(f64::to_bits)
-            .collect();
-        let number = memo.wedges.len() as u64;
-        let (number, table) = memo
-            .wedges
-            .entry(key)
-            .or_insert_with(|| (number, std::rc::Rc::new(wedge(ring[j], alpha[j], &wp, &vp))))
-            .clone();
-        table_number[j] = number;
         for (a, x) in ws.iter().enumerate() {
             w_pos[x.1] = Some(a);
         }
         for (b, x) in vs.iter().enumerate() {
             v_pos[x.1] = Some(b);
         }
+        // The rungs the ladder may read (`link`: from W point x to V point y only when
+        // back[y] <= x < y), and below and left of them what they are computed from: at a
+        // thin channel's corner, whose wedge runs along the channel, the whole table was
+        // 640,000 cells rebuilt at every fill (fuzz case 72), the rungs a sixth of them.
+        let mut rows = vec![0usize; ws.len()];
+        for (b, &(_, y)) in vs.iter().enumerate() {
+            for a in (back[y]..y).filter_map(|x| w_pos[x]) {
+                rows[a] = rows[a].max(b + 1);
+            }
+        }
+        for a in (1..rows.len()).rev() {
+            rows[a - 1] = rows[a - 1].max(rows[a]);
+        }
+        let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
+        let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();
+        let key = Words(
+            [ring[j][0], ring[j][1], alpha[j], wp.len() as f64]
+                .into_iter()
+                .chain(wp.iter().chain(&vp).flat_map(|p| [p[0], p[1]]))
+                .map(f64::to_bits)
+                .chain(rows.iter().map(|&r| r as u64))
+                .collect(),
+        );
+        let number = memo.wedges.len() as u64;
+        let (number, table) = memo
+            .wedges
+            .entry(key)
+            .or_insert_with(|| {
+                let table = wedge(ring[j], alpha[j], &wp, &vp, &rows);
+                (number, std::sync::Arc::new(table))
+            })
+            .clone();
+        table_number[j] = number;
         wedges[j] = Some((
             ws.into_iter().map(|x| x.1).collect(),
             vs.into_iter().map(|x| x.1).collect(),
@@ -622,12 +682,14 @@ fn fill_polygon(
     };
     // Windows: the inner points within two sides of each front corner, found around the
     // corner's foot, kept in order along the chain.
-    let mut index_of_point: HashMap<(usize, u64), usize> = HashMap::with_capacity(n);
+    let mut index_of_point: FxHashMap<(usize, u64), usize> =
+        FxHashMap::with_capacity_and_hasher(n, Default::default());
     for (k, p) in place.iter().enumerate() {
         if let Place::Side(s, t) = *p {
             index_of_point.entry((s, t.to_bits())).or_insert(k);
         }
     }
+    let blocks = Blocks::new(&inner);
     let mut window: Vec<(usize, usize)> = Vec::with_capacity(m);
     let mut anchor = 0usize;
     for i in 0..m {
@@ -642,13 +704,8 @@ fn fill_polygon(
         let (p, reach) = reaches[i];
         let lo_scan = anchor.saturating_sub(600);
         let hi_scan = (anchor + 600).min(n - 1);
-        let near: Vec<usize> = (lo_scan..=hi_scan)
-            .filter(|&x| dist(p, inner[x]) <= reach)
-            .collect();
-        window.push((
-            near.first().copied().unwrap_or(anchor),
-            near.last().copied().unwrap_or(anchor),
-        ));
+        let near = blocks.within(&inner, p, reach, lo_scan..=hi_scan);
+        window.push(near.unwrap_or((anchor, anchor)));
     }
     window[0].0 = 0;
     window[m - 1].1 = n - 1;
@@ -657,32 +714,6 @@ fn fill_polygon(
     }
     for i in (0..m - 1).rev() {
         window[i].1 = window[i].1.min(window[i + 1].1).max(window[i + 1].0);
-    }
-    // How far back a side along the chain may reach: a few boxes along a side; from a
-    // corner's rays or the side after it, back over the whole tip to the side before (far
-    // back at a sharp corner, whose wedge spans many points on both sides).
-    let mut back: Vec<usize> = (0..n).map(|k| k.saturating_sub(SIDE_SPAN)).collect();
-    for (j, _) in place
-        .iter()
-        .enumerate()
-        .filter(|x| matches!(x.1, Place::Corner(_)))
-    {
-        let Place::Corner(c) = place[j] else { continue };
-        let reach = if alpha[c] < 90.0 {
-            SHARP_SPAN
-        } else {
-            SIDE_SPAN
-        };
-        let from = j.saturating_sub(reach);
-        let mut k = j;
-        while k < n
-            && (k == j
-                || matches!(place[k], Place::Ray(..))
-                || k < j + reach + 1 + tip_len(&place, j))
-        {
-            back[k] = back[k].min(from);
-            k += 1;
-        }
     }
     // Anchor rungs: a front corner with its own foot, clear of the side's corner tips, the
     // first in each stretch of PIECE of its sides along its side (so an erosion moves only
@@ -714,7 +745,12 @@ fn fill_polygon(
     let tags: Vec<[u64; 4]> = (0..n)
         .map(|x| match place[x] {
             Place::Side(s, t) => {
-                let (w, v) = (table_number[(s + 1) % nc], table_number[s]);
+                // A table's number only where the point is in its wedge: the link reads a
+                // table only between two of its points.
+                let (w, v) = (
+                    w_pos[x].map_or(u64::MAX, |_| table_number[(s + 1) % nc]),
+                    v_pos[x].map_or(u64::MAX, |_| table_number[s]),
+                );
                 [
                     slot(w_pos[x]) << 32 | slot(v_pos[x]),
                     w,
@@ -878,5 +914,37 @@ mod tests {
         // At 20 from c, reaching less than its distance to the sides: it meets neither.
         let short = (bisector(20.0), 0.4 * width_at(20.0));
         assert_eq!(rung_reach((w, c, v), &[short]), None);
+    }
+
+    #[test]
+    fn a_wedge_table_cut_to_the_rungs_read_holds_what_the_whole_table_holds_there() {
+        for alpha in [12.0f64, 45.0] {
+            let t = alpha.to_radians();
+            let c = [0.0, 0.0];
+            // Points along both sides at uneven distances (growing, with a jitter).
+            let along =
+                |k: usize, j: usize| 0.3 * 1.04f64.powi(k as i32) + 0.01 * ((k * j) % 7) as f64;
+            let vs: Vec<Point> = (0..60).map(|k| [along(k, 3), 0.0]).collect();
+            let ws: Vec<Point> = (0..60)
+                .map(|k| along(k, 5))
+                .map(|d| [d * t.cos(), d * t.sin()])
+                .collect();
+            let whole = wedge(c, alpha, &ws, &vs, &vec![vs.len(); ws.len()]);
+            // A staircase: row a keeps its first 60 − a cells, as rungs across a channel do.
+            let rows: Vec<usize> = (0..ws.len()).map(|a| vs.len() - a).collect();
+            let cut = wedge(c, alpha, &ws, &vs, &rows);
+            let mut finite = 0;
+            for a in 0..ws.len() {
+                for b in 0..vs.len() {
+                    if b < rows[a] {
+                        assert_eq!(cut[a][b], whole[a][b], "{alpha} ({a}, {b})");
+                        finite += usize::from(whole[a][b].0 > f64::NEG_INFINITY);
+                    } else {
+                        assert_eq!(cut[a][b].0, f64::NEG_INFINITY);
+                    }
+                }
+            }
+            assert!(finite > 1000, "{alpha}: {finite}");
+        }
     }
 }

@@ -5,14 +5,17 @@
 //! content (`Pieces`). An erosion then costs the pieces it changes, not the whole polygon:
 //! a front of 20,000 corners was solved again whole, 300 times, in a failing run.
 //!
+//! Pieces not solved before are solved over the threads first (`solve`), each from its
+//! content alone, so the mesh is the same bytes for every thread count.
+//!
 //! A piece that keeps no ladder in bounds is merged with its neighbours (the anchors between
 //! them dropped), one more on each side at a time up to `MERGE`, before the failure is
 //! reported: the anchors then only restrict a ladder where it also fails with more room.
 
-use std::collections::HashMap;
-
 use super::boxes::{ladder, Failure, Vertex};
 use crate::geom::Point;
+use crate::hex::fxhash::{FxHashMap, FxHashSet};
+use crate::hex::parallel::each_in_parallel;
 
 /// Pieces merged on each side of a failing one, at most, before the failure stands.
 const MERGE: usize = 2;
@@ -23,7 +26,27 @@ type Solved = Result<(f64, Vec<[Vertex; 3]>), Failure>;
 /// The pieces solved so far, by their content (kept from one erosion to the next).
 #[derive(Debug, Default)]
 pub struct Pieces {
-    solved: HashMap<Vec<u64>, Solved>,
+    solved: FxHashMap<Words, Solved>,
+    /// The threads the pieces may be solved on (`solve`; 0 or 1: in order, on this one).
+    pub threads: usize,
+}
+
+/// The link of a ladder (`boxes::ladder`), shared by the threads that solve pieces.
+pub type Link<'l> = &'l (dyn Fn(usize, usize) -> Option<f64> + Sync);
+
+/// A long key of words (a piece's content, a wedge's points), hashed a word at a time: as
+/// a `Vec<u64>` it reaches the hasher as bytes, one multiplication each in `FxHasher`, and
+/// SipHash cost a twentieth of a large domain's run.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Words(pub Vec<u64>);
+
+impl std::hash::Hash for Words {
+    fn hash<H: std::hash::Hasher>(&self, h: &mut H) {
+        h.write_u64(self.0.len() as u64);
+        for &w in &self.0 {
+            h.write_u64(w);
+        }
+    }
 }
 
 /// A polygon's cyclic ladder as `boxes::ladder` takes it (the whole chain), with what the
@@ -41,13 +64,34 @@ pub struct Chain<'c> {
 /// The ladder of `chain` through the rungs `anchors` ((front index, inner index), both
 /// increasing; the first is (0, 0), the last the chain's end): the smallest margin and the
 /// triangles, as `ladder` gives them for the whole chain.
+///
+/// With more than one thread (`Pieces::threads`), the pieces not solved before are solved
+/// first over the threads, each on its own: a piece's ladder depends on its content only,
+/// so the result is the same for every thread count. This solves the pieces past a failing
+/// one too, which a single thread leaves for a later fill.
 pub fn solve(
     chain: &Chain,
     anchors: &[(usize, usize)],
-    link: &dyn Fn(usize, usize) -> Option<f64>,
+    link: Link,
     pieces: &mut Pieces,
 ) -> Result<(f64, Vec<[Vertex; 3]>), Failure> {
     let count = anchors.len() - 1;
+    if pieces.threads > 1 {
+        let mut todo: Vec<(usize, Local)> = Vec::new();
+        let mut listed = FxHashSet::default();
+        for p in 0..count {
+            let l = local(chain, anchors[p], anchors[p + 1]);
+            if !pieces.solved.contains_key(&l.key) && listed.insert(l.key.clone()) {
+                todo.push((p, l));
+            }
+        }
+        let solved = each_in_parallel(pieces.threads, &todo, |(p, l)| {
+            run(chain, l, anchors[*p], anchors[*p + 1], link)
+        });
+        for ((_, l), s) in todo.into_iter().zip(solved) {
+            pieces.solved.insert(l.key, s);
+        }
+    }
     // The solved stretches in order: (first anchor, margin, triangles).
     let mut done: Vec<(usize, f64, Vec<[Vertex; 3]>)> = Vec::new();
     let mut p = 0;
@@ -81,14 +125,15 @@ pub fn solve(
     Ok((value, done.into_iter().flat_map(|d| d.2).collect()))
 }
 
-/// The ladder between rungs a and b alone, in the chain's indices (kept by content).
-fn piece(
-    chain: &Chain,
-    (ia, xa): (usize, usize),
-    (ib, xb): (usize, usize),
-    link: &dyn Fn(usize, usize) -> Option<f64>,
-    pieces: &mut Pieces,
-) -> Solved {
+/// A piece as `ladder` takes it: the windows and backs in its own indices, and its key.
+struct Local {
+    key: Words,
+    window: Vec<(usize, usize)>,
+    back: Vec<usize>,
+}
+
+/// The piece of `chain` between rungs a and b in its own indices, with its key (its content).
+fn local(chain: &Chain, (ia, xa): (usize, usize), (ib, xb): (usize, usize)) -> Local {
     let front = &chain.front[ia..=ib];
     let inner = &chain.inner[xa..=xb];
     let last = xb - xa;
@@ -117,13 +162,47 @@ fn piece(
     }
     key.extend(window.iter().flat_map(|w| [w.0 as u64, w.1 as u64]));
     key.extend(back.iter().map(|&b| b as u64));
-    if let Some(found) = pieces.solved.get(&key) {
-        return shifted(found.clone(), ia, xa);
+    Local {
+        key: Words(key),
+        window,
+        back,
     }
+}
+
+/// The ladder of piece `l`, between rungs a and b, in its own indices.
+fn run(
+    chain: &Chain,
+    l: &Local,
+    (ia, xa): (usize, usize),
+    (ib, xb): (usize, usize),
+    link: Link,
+) -> Solved {
     let local_link = |k0: usize, k1: usize| link(xa + k0, xa + k1);
-    let solved = ladder(front, inner, &window, (inner.len(), &back), &local_link);
-    pieces.solved.insert(key, solved.clone());
-    shifted(solved, ia, xa)
+    let inner = &chain.inner[xa..=xb];
+    ladder(
+        &chain.front[ia..=ib],
+        inner,
+        &l.window,
+        (inner.len(), &l.back),
+        &local_link,
+    )
+}
+
+/// The ladder between rungs a and b alone, in the chain's indices (kept by content).
+fn piece(
+    chain: &Chain,
+    a: (usize, usize),
+    b: (usize, usize),
+    link: Link,
+    pieces: &mut Pieces,
+) -> Solved {
+    let l = local(chain, a, b);
+    if let Some(found) = pieces.solved.get(&l.key) {
+        return shifted(found.clone(), a.0, a.1);
+    }
+    let solved = run(chain, &l, a, b, link);
+    pieces.solved.insert(l.key, solved.clone());
+    shifted(solved, a.0, a.1)
 }
 
 /// A piece's result in the chain's indices.

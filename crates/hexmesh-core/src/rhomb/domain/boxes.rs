@@ -415,21 +415,36 @@ pub fn ladder(
                     }
                 }
             }
+            // The sides along the segment, nearest first: the best one lies a box or so
+            // back, and tried from the farthest each was better than the last, so every
+            // one was scored (three in five took the cell). The cell is the one trying them
+            // in increasing k0 gives: the largest margin, then the fewest triangles, then
+            // the first tried in that order (the step before, then the smallest k0).
             let first = back.get(k).copied().unwrap_or(k.saturating_sub(span));
-            for k0 in first.max(lo)..k {
+            let earlier = |step: Step| !matches!(step, Step::Segment(_));
+            for k0 in (first.max(lo)..k).rev() {
                 let Some((mm, c, _)) = row[k0 - lo] else {
                     continue;
                 };
-                if hopeless(&cell, mm, c)
-                    || !floor_of(&cell).may_reach(inner[k0], inner[k], front[i])
-                {
+                let lost = cell.is_some_and(|(best, count, step)| {
+                    mm < best
+                        || (mm == best && (c + 1 > count || (c + 1 == count && earlier(step))))
+                });
+                if lost || !floor_of(&cell).may_reach(inner[k0], inner[k], front[i]) {
                     continue;
                 }
                 let Some(extra) = link(k0, k) else {
                     continue;
                 };
                 if let Some(g) = score(inner[k0], inner[k], front[i]) {
-                    take(&mut cell, (mm.min(g).min(extra), c + 1, Step::Segment(k0)));
+                    let v = mm.min(g).min(extra);
+                    let wins = cell.is_none_or(|(best, count, step)| {
+                        v > best
+                            || (v == best && (c + 1 < count || (c + 1 == count && !earlier(step))))
+                    });
+                    if wins {
+                        cell = Some((v, c + 1, Step::Segment(k0)));
+                    }
                 }
             }
             row[k - lo] = cell;
@@ -760,5 +775,137 @@ mod tests {
         let tri = [[0.0, 0.0], [1.0, 0.0], [0.5, 0.8]];
         assert!(Floor::of(f64::NEG_INFINITY).may_reach(tri[0], tri[1], tri[2]));
         assert!(!Floor::of(f64::INFINITY).may_reach(tri[0], tri[1], tri[2]));
+    }
+
+    /// The steps of a plain ladder, last first: (front index, inner index, a front step).
+    type PlainSteps = Vec<(usize, usize, bool)>;
+
+    /// The ladder's programme without its shortcuts: every candidate of a cell scored, the
+    /// step before first, then the sides along S in increasing k0, a later one taking the
+    /// cell only with a larger margin or as large a margin and fewer triangles.
+    fn plain_ladder(
+        front: &[Point],
+        inner: &[Point],
+        window: &[(usize, usize)],
+        span: usize,
+        link: &dyn Fn(usize, usize) -> Option<f64>,
+    ) -> Option<(f64, PlainSteps)> {
+        // best[i][k]: (margin, triangles, from (i', k'), a front step).
+        type Cell = Option<(f64, usize, (usize, usize), bool)>;
+        let (m, n) = (front.len(), inner.len());
+        let mut best: Vec<Vec<Cell>> = vec![vec![None; n]; m];
+        for i in 0..m {
+            for k in window[i].0..=window[i].1 {
+                let mut cell: Cell = None;
+                let mut take = |cand: (f64, usize, (usize, usize), bool)| {
+                    if cell.is_none_or(|(v, c, _, _)| cand.0 > v || (cand.0 == v && cand.1 < c)) {
+                        cell = Some(cand);
+                    }
+                };
+                if i == 0 && k == window[0].0 {
+                    take((f64::INFINITY, 0, (0, k), false));
+                }
+                if let Some((v, c, _, _)) = (i > 0).then(|| best[i - 1][k]).flatten() {
+                    if let Some(g) = score(inner[k], front[i], front[i - 1]) {
+                        take((v.min(g), c + 1, (i - 1, k), true));
+                    }
+                }
+                for k0 in k.saturating_sub(span).max(window[i].0)..k {
+                    let (Some((v, c, _, _)), Some(extra)) = (best[i][k0], link(k0, k)) else {
+                        continue;
+                    };
+                    if let Some(g) = score(inner[k0], inner[k], front[i]) {
+                        take((v.min(g).min(extra), c + 1, (i, k0), false));
+                    }
+                }
+                best[i][k] = cell;
+            }
+        }
+        let (mut i, mut k) = (m - 1, window[m - 1].1);
+        let value = best[i][k]?.0;
+        let mut steps = Vec::new();
+        while let Some((_, c, from, front_step)) = best[i][k] {
+            if c == 0 {
+                break;
+            }
+            steps.push((i, k, front_step));
+            (i, k) = from;
+        }
+        Some((value, steps))
+    }
+
+    #[test]
+    fn the_ladder_chooses_what_scoring_every_candidate_in_order_chooses() {
+        // Strips of front corners at uneven heights over S (the x axis), each foot and six
+        // points between feet on S, and a link that caps some sides (as a fan triangle
+        // does) at a margin shared by many ladders, so that ties of margin and count occur.
+        let mut seed = 20261207u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut ties = 0;
+        for case in 0..60 {
+            let m = 10;
+            let front: Vec<Point> = (0..m)
+                .map(|i| [i as f64 + 0.3 * next(), 0.5 + 0.6 * next()])
+                .collect();
+            let mut inner: Vec<Point> = Vec::new();
+            for i in 0..m {
+                inner.push([front[i][0], 0.0]);
+                if i + 1 < m {
+                    let (x0, x1) = (front[i][0], front[i + 1][0]);
+                    inner.extend((1..7).map(|q| [x0 + (x1 - x0) * q as f64 / 7.0, 0.0]));
+                }
+            }
+            let n = inner.len();
+            let window: Vec<(usize, usize)> = (0..m)
+                .map(|i| ((7 * i).saturating_sub(10), (7 * i + 10).min(n - 1)))
+                .collect();
+            let capped = |k0: usize, k: usize| {
+                if (k0 * 31 + k * 17 + case) % 5 == 0 {
+                    Some(8.0)
+                } else {
+                    Some(f64::INFINITY)
+                }
+            };
+            let span = 14;
+            let back: Vec<usize> = (0..n).map(|k| k.saturating_sub(span)).collect();
+            let want = plain_ladder(&front, &inner, &window, span, &capped);
+            let got = ladder(&front, &inner, &window, (span, &back), &capped);
+            match (want, got) {
+                (Some((v, steps)), Ok((g, triangles))) if v >= -SLACK => {
+                    assert_eq!(v, g, "case {case}");
+                    assert_eq!(steps.len(), triangles.len(), "case {case}");
+                    ties += usize::from(v == 8.0);
+                    // The same triangles, last step first.
+                    for (&(i, k, front_step), t) in steps.iter().zip(triangles.iter().rev()) {
+                        assert_eq!(
+                            t[1],
+                            if front_step {
+                                Vertex::Front(i)
+                            } else {
+                                Vertex::Segment(k)
+                            },
+                            "case {case}"
+                        );
+                        if !front_step {
+                            assert_eq!(t[2], Vertex::Front(i), "case {case}");
+                        } else {
+                            assert_eq!(t[0], Vertex::Segment(k), "case {case}");
+                        }
+                    }
+                }
+                (Some((v, _)), Err(Failure::Bounds { margin, .. })) => {
+                    assert!(v < -SLACK, "case {case}: {v}");
+                    assert_eq!(v, margin, "case {case}");
+                }
+                (want, got) => panic!("case {case}: {want:?} against {got:?}"),
+            }
+        }
+        // Ladders capped by a link: ties of margin, decided by count and then by order.
+        assert!(ties >= 5, "{ties}");
     }
 }

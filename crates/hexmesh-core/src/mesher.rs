@@ -42,7 +42,7 @@ pub struct Params {
     /// for `triangle`); a mesher without such options refuses them (`refuse_switches`).
     pub switches: Option<String>,
     /// How many threads a mesher that splits its work over threads may use (`hex`,
-    /// `hex-simple`); `None`: as many as the machine has (`available_parallelism`). The mesh
+    /// `hex-simple`, `rhomb` on a domain); `None`: as many as the machine has (`available_parallelism`). The mesh
     /// is the same bytes for every count.
     pub threads: Option<std::num::NonZeroUsize>,
     /// Who is told what the mesher is doing while it runs (`progress`); `None`: nobody, and

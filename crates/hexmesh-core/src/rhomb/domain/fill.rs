@@ -610,9 +610,12 @@ fn fill_polygon(
         // back[y] <= x < y), and below and left of them what they are computed from: at a
         // thin channel's corner, whose wedge runs along the channel, the whole table was
         // 640,000 cells rebuilt at every fill (fuzz case 72), the rungs a sixth of them.
+        // Only this wedge's W points: `w_pos` also holds the earlier wedges' (the side
+        // before a sharp corner that is short lies within reach of the next corner).
         let mut rows = vec![0usize; ws.len()];
         for (b, &(_, y)) in vs.iter().enumerate() {
-            for a in (back[y]..y).filter_map(|x| w_pos[x]) {
+            let own = |x: &usize| matches!(place[*x], Place::Side(s, _) if s == w_side);
+            for a in (back[y]..y).filter(own).filter_map(|x| w_pos[x]) {
                 rows[a] = rows[a].max(b + 1);
             }
         }

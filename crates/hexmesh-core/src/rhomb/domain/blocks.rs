@@ -1,6 +1,7 @@
 //! Which inner points lie within a front corner's reach (ours, engineering of `fill`'s
 //! windows): the inner chain in runs with their bounding boxes.
 
+use super::input::bbox;
 use crate::geom::{dist, Point};
 
 /// The inner chain in runs of `Blocks::RUN` points, each with its bounding box, so that a
@@ -15,27 +16,7 @@ impl Blocks {
     const RUN: usize = 16;
 
     pub fn new(inner: &[Point]) -> Blocks {
-        let boxes = inner
-            .chunks(Self::RUN)
-            .map(|run| {
-                run.iter().fold(
-                    [
-                        f64::INFINITY,
-                        f64::INFINITY,
-                        f64::NEG_INFINITY,
-                        f64::NEG_INFINITY,
-                    ],
-                    |b, p| {
-                        [
-                            b[0].min(p[0]),
-                            b[1].min(p[1]),
-                            b[2].max(p[0]),
-                            b[3].max(p[1]),
-                        ]
-                    },
-                )
-            })
-            .collect();
+        let boxes = inner.chunks(Self::RUN).map(bbox).collect();
         Blocks { boxes }
     }
 

@@ -839,13 +839,7 @@ mod tests {
         // Strips of front corners at uneven heights over S (the x axis), each foot and six
         // points between feet on S, and a link that caps some sides (as a fan triangle
         // does) at a margin shared by many ladders, so that ties of margin and count occur.
-        let mut seed = 20261207u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = super::super::fan::uniform(20261207);
         let mut ties = 0;
         for case in 0..60 {
             let m = 10;

@@ -17,6 +17,18 @@ use super::boxes::{ladder, score, Failure, Vertex};
 use super::fill::{wedge, wedge_triangles, whole_corner, WedgeVertex};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 
+/// Numbers in [0, 1) from `seed`, the same on every machine (a linear congruential
+/// generator): the surveys' and tests' random shapes.
+pub fn uniform(seed: u64) -> impl FnMut() -> f64 {
+    let mut state = seed;
+    move || {
+        state = state
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
 /// How the ladder meets the corner.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Tip {
@@ -495,13 +507,7 @@ mod tests {
     fn corner_survey() {
         let mut fails = Vec::new();
         let mut wins = std::collections::BTreeMap::new();
-        let mut rng = 12345u64;
-        let mut next = || {
-            rng = rng
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (rng >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(12345);
         for _ in 0..400 {
             let alpha = 1.0 + 358.0 * next();
             let turn = std::f64::consts::TAU * next();

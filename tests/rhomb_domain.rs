@@ -219,6 +219,25 @@ fn a_segment_far_shorter_than_its_neighbours_is_meshed_on_a_band_graded_along_th
 }
 
 #[test]
+fn a_graded_band_whose_fill_fails_where_sizes_meet_is_made_finer_there_and_meshed() {
+    // Case 166 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123): a short segment
+    // beside long ones, on a graded band. Where the rhombs along a segment change size, the
+    // ladder missed the bounds; erosions, moved corners and three finer bands did not mend
+    // it. The coarse touched leaves near each failure are now split (`finer_near`).
+    let events = meshed_fixture_events(
+        "tests/fixtures/rhomb-domain/fuzz-seed20261123-case166-short-long.poly",
+    );
+    assert!(
+        events.contains(&("graded band along the boundary", None)),
+        "{events:?}"
+    );
+    assert!(
+        events.contains(&("graded band made finer near a failed fill", Some(1))),
+        "{events:?}"
+    );
+}
+
+#[test]
 fn a_domain_mesh_is_the_same_bytes_on_one_two_and_three_threads() {
     // The ladder's pieces are solved over the threads (each by its content alone): the
     // mesh may not depend on how many. The star and the holes go through erosions, so

@@ -366,8 +366,8 @@ const POINTS_A_RELAXED: usize = 6;
 
 /// How often a graded band may be made finer near a failed fill (`band::finer_near`)
 /// before moves and erosions take over. The fuzz domains meshed with it (seed 20261123)
-/// took 5 to 80 rounds (cases 110 and 70; 70, capped at 80, needed a finer band besides)
-/// and case 150 took 133; each costs a new lattice, cut and fill (case 150: 140 fills, 12 s).
+/// took 5 to 133 rounds (cases 110 and 150); each costs a new lattice, cut and fill (case
+/// 150: 140 fills in 12 to 16 s).
 const NEAR_SPLITS: usize = 200;
 
 /// The progress round of `band::finer_near` (`crate::progress`).

@@ -238,6 +238,29 @@ fn a_graded_band_whose_fill_fails_where_sizes_meet_is_made_finer_there_and_meshe
 }
 
 #[test]
+fn islands_the_cut_leaves_are_eroded_all_at_once_and_leave_the_ladders_erosions_alone() {
+    // Case 78 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123): a short segment
+    // beside long ones. The cut leaves islands (fronts beside the one that faces the
+    // polygon: kept triangles cut off, holes in the kept lattice a few triangles wide),
+    // and each took one of the ten erosions a band allows the ladder, one island a round:
+    // after the graded band was made finer near each failed fill, the same islands came
+    // back on each new lattice, and the erosions ran out on them three bands in a row.
+    // Every polygon's islands are now eroded in one round, counted apart (`ISLAND_ROUNDS`
+    // a lattice).
+    let events = meshed_fixture_events(
+        "tests/fixtures/rhomb-domain/fuzz-seed20261123-case78-short-long.poly",
+    );
+    let islands: Vec<u64> = events
+        .iter()
+        .filter(|e| e.0 == "islands eroded")
+        .filter_map(|e| e.1)
+        .collect();
+    // More island rounds than the ten erosions a band allows the ladder (`BAND_EROSIONS`),
+    // which they used to take.
+    assert!(islands.len() > 10, "{events:?}");
+}
+
+#[test]
 fn a_domain_mesh_is_the_same_bytes_on_one_two_and_three_threads() {
     // The ladder's pieces are solved over the threads (each by its content alone): the
     // mesh may not depend on how many. The star and the holes go through erosions, so

@@ -70,8 +70,9 @@ pub enum Stuck {
     /// below the bounds when negative; −∞ where no ladder was tried): the caller moves or
     /// erodes it.
     At(u32, f64),
-    /// Two fronts face one polygon: the smaller, an island the cut left between deleted
-    /// triangles, has these corners; the caller erodes them all.
+    /// Two fronts face one polygon: all but the longest are islands the cut left between
+    /// deleted triangles; these are their corners, every polygon's at once, and the caller
+    /// erodes them all.
     Island(Vec<u32>),
     /// The fronts do not pair with the polygons one to one: the kept lattice does not
     /// separate two polygons (one front faces both), or a polygon faces none. The tree must
@@ -303,17 +304,30 @@ pub fn fill(
     if !finer.is_empty() {
         return Err(Stuck::Finer(finer));
     }
+    // Two fronts facing one polygon: all but the longest are islands the cut left between
+    // deleted triangles (a kept triangle cut off, or a hole in the kept lattice); eroding
+    // their corners joins them to the gap. Every polygon's islands are named at once, so
+    // that one erosion round takes them all.
+    let islands: Vec<u32> = front_of
+        .iter()
+        .filter(|fronts| fronts.len() > 1)
+        .flat_map(|fronts| {
+            let longest = fronts
+                .iter()
+                .copied()
+                .max_by_key(|&f| (cut.loops[f].len(), std::cmp::Reverse(f)))
+                .expect("two");
+            fronts
+                .iter()
+                .filter(move |&&f| f != longest)
+                .flat_map(|&f| cut.loops[f].iter().copied())
+        })
+        .collect();
+    if !islands.is_empty() {
+        return Err(Stuck::Island(islands));
+    }
     let mut out = Fill::default();
     for (k, fronts) in front_of.iter().enumerate() {
-        // Two fronts facing one polygon: the smaller is an island the cut left between
-        // deleted triangles; eroding its corners joins it to the gap.
-        if fronts.len() > 1 {
-            let smallest = fronts
-                .iter()
-                .min_by_key(|&&f| (cut.loops[f].len(), f))
-                .expect("two");
-            return Err(Stuck::Island(cut.loops[*smallest].clone()));
-        }
         if fronts.is_empty() {
             let poly = &domain.polygons[k];
             return Err(Stuck::Finer(

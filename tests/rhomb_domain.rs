@@ -261,6 +261,27 @@ fn islands_the_cut_leaves_are_eroded_all_at_once_and_leave_the_ladders_erosions_
 }
 
 #[test]
+fn holes_whose_even_band_is_over_25_times_the_graded_one_are_meshed_on_the_graded_band() {
+    // Case 107 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123): a polygon with
+    // holes whose even band has 397,630 leaves, 43.9 times the graded band's 9,061. It was
+    // chosen (up to 100 times) and meshed 1,050,639 triangles, past the campaign's 500,000
+    // vertices; the graded band meshes it with about 13,000.
+    let path = "tests/fixtures/rhomb-domain/fuzz-seed20261123-case107-holes.poly";
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    let run = meshed_within_the_promise(path, &input);
+    assert!(
+        run.mesh.triangles.len() < 50_000,
+        "{}",
+        run.mesh.triangles.len()
+    );
+    let events = watched_events(&input, &run);
+    assert!(
+        events.contains(&("graded band along the boundary", None)),
+        "{events:?}"
+    );
+}
+
+#[test]
 fn a_domain_mesh_is_the_same_bytes_on_one_two_and_three_threads() {
     // The ladder's pieces are solved over the threads (each by its content alone): the
     // mesh may not depend on how many. The star and the holes go through erosions, so

@@ -38,8 +38,28 @@ def main(source, target):
         inside = ((a <= 0) & (b <= 0) & (c <= 0)) | ((a >= 0) & (b >= 0) & (c >= 0))
         img[inside] = colour
 
+    def clip(x0, y0, x1, y1):
+        # The part of the line inside the picture (Liang-Barsky), or None: a segment many
+        # pictures long is stepped only where it shows.
+        t0, t1 = 0.0, 1.0
+        for d, q in ((x0 - x1, x0 + 2), (x1 - x0, SIZE + 1 - x0), (y0 - y1, y0 + 2), (y1 - y0, SIZE + 1 - y0)):
+            if d == 0:
+                if q < 0:
+                    return None
+            elif d < 0:
+                t0 = max(t0, q / d)
+            else:
+                t1 = min(t1, q / d)
+        if t0 > t1:
+            return None
+        dx, dy = x1 - x0, y1 - y0
+        return x0 + t0 * dx, y0 + t0 * dy, x0 + t1 * dx, y0 + t1 * dy
+
     def line(p, q, colour, width=1):
-        (x0, y0), (x1, y1) = pixel(p), pixel(q)
+        clipped = clip(*pixel(p), *pixel(q))
+        if clipped is None:
+            return
+        x0, y0, x1, y1 = clipped
         steps = int(max(abs(x1 - x0), abs(y1 - y0))) + 1
         for k in range(steps + 1):
             x, y = x0 + (x1 - x0) * k / steps, y0 + (y1 - y0) * k / steps

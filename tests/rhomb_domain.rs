@@ -269,6 +269,27 @@ fn islands_the_cut_leaves_are_eroded_all_at_once_and_leave_the_ladders_erosions_
 }
 
 #[test]
+fn lattice_triangles_rounded_just_past_the_bounds_are_kept_and_leave_no_islands_to_erode() {
+    // Case 54 of `hexmesh fuzz --domains --mesher rhomb` (seed 1): a segment 4.9e-5 long
+    // beside one a hundred times longer, at x ≈ −0.78. Lattice triangles about 5e-6 across
+    // measured a few billionths of a degree past 90° (or short of 30°): the cut deleted
+    // them, each hole was an island, and eroding it grew it a ring a round into the gap on
+    // every lattice, until the ladders beside the short segment failed after three finer
+    // bands. The cut now grants a triangle what placing its corners explains
+    // (`rounding::placement_allowance`): no island, no finer band.
+    let events =
+        meshed_fixture_events("tests/fixtures/rhomb-domain/fuzz-seed1-case54-short-long.poly");
+    assert!(
+        events.iter().all(|e| e.0 != "islands eroded"),
+        "no islands: {events:?}"
+    );
+    assert!(
+        events.iter().all(|e| e.0 != "finer band"),
+        "no finer band: {events:?}"
+    );
+}
+
+#[test]
 fn holes_whose_even_band_is_over_25_times_the_graded_one_are_meshed_on_the_graded_band() {
     // Case 107 of `hexmesh fuzz --domains --mesher rhomb` (seed 20261123): a polygon with
     // holes whose even band has 397,630 leaves, 43.9 times the graded band's 9,061. It was

@@ -271,7 +271,7 @@ fn islands_the_cut_leaves_are_eroded_all_at_once_and_leave_the_ladders_erosions_
 #[test]
 fn lattice_triangles_rounded_just_past_the_bounds_are_kept_and_leave_no_islands_to_erode() {
     // Case 54 of `hexmesh fuzz --domains --mesher rhomb` (seed 1): a segment 4.9e-5 long
-    // beside one a hundred times longer, at x ≈ −0.78. Lattice triangles about 5e-6 across
+    // beside one a hundred times longer, at x ≈ −0.78. Lattice triangles 4e-6 to 8e-6 across
     // measured a few billionths of a degree past 90° (or short of 30°): the cut deleted
     // them, each hole was an island, and eroding it grew it a ring a round into the gap on
     // every lattice, until the ladders beside the short segment failed after three finer

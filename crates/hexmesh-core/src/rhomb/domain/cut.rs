@@ -447,7 +447,7 @@ pub fn prepare(
 /// placing its corners by one rounding each explains (`rounding::placement_allowance`, the
 /// largest of its three angles'). The lattice's own triangles are in bounds in real
 /// arithmetic, but where they are small against their coordinates their angles come out
-/// beyond `SLACK` alone: a right triangle of a size change 5e-6 long at x ≈ −0.78 measured
+/// beyond `SLACK` alone: a right triangle of a size change, sides 4e-6 to 8e-6 at x ≈ −0.78, measured
 /// 90.0000000015° (fuzz case 54 of seed 1). Deleted, it left a hole in the kept lattice,
 /// an island whose erosions grew it a ring a round (3, 9, 17, 23 corners) on every lattice
 /// the run made, until the ladders beside the short segment failed: cases 46, 54 and 118
@@ -608,7 +608,7 @@ mod tests {
     #[test]
     fn a_lattice_right_triangle_rounded_past_90_degrees_is_in_bounds_within_its_placement() {
         // The lattice triangle of fuzz case 54 of seed 1 (a size change's 30-60-90, sides
-        // about 5e-6 at x ≈ −0.78) that `SLACK` alone deleted: its right angle measures
+        // 4.1e-6 to 8.2e-6 at x ≈ −0.78) that `SLACK` alone deleted: its right angle measures
         // 90.0000000015°.
         let t = [
             [-0.784835287049825, -0.20438435694255125],

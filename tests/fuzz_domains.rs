@@ -379,6 +379,7 @@ fn saalfeld_meshes_a_campaign_of_every_family_with_no_failure() {
         20_261_123,
         None,
         &Runner::InProcess,
+        1,
         |_| {},
     )
     .expect("saalfeld keeps segments");
@@ -399,7 +400,7 @@ fn hexmesh_exe() -> Runner {
 /// for it).
 #[test]
 fn triangle_keeps_its_30_degrees_on_every_domain_without_a_corner_sharper_than_30_degrees() {
-    let s = domain_campaign("triangle", 100, 20_261_123, None, &hexmesh_exe(), |_| {})
+    let s = domain_campaign("triangle", 100, 20_261_123, None, &hexmesh_exe(), 1, |_| {})
         .expect("triangle keeps segments");
     assert_eq!(s.cases, 100, "{s}");
     assert_eq!(s.refused, 0, "{s}");
@@ -417,7 +418,7 @@ fn triangle_keeps_its_30_degrees_on_every_domain_without_a_corner_sharper_than_3
 
 #[test]
 fn a_mesher_that_does_not_keep_segments_is_a_usage_error_naming_those_that_do() {
-    match domain_campaign("hex-simple", 1, 1, None, &Runner::InProcess, |_| {}) {
+    match domain_campaign("hex-simple", 1, 1, None, &Runner::InProcess, 1, |_| {}) {
         Err(Error::Usage(m)) => {
             assert!(m.starts_with("hex-simple does not keep segments"), "{m}");
             let (_, those) = m.split_once("the meshers that do:").expect("a list");
@@ -483,6 +484,7 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
         5,
         Some(&dir),
         &Runner::InProcess,
+        1,
         |_| {},
     )
     .expect("runs");
@@ -508,6 +510,7 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
         5,
         None,
         &Runner::InProcess,
+        1,
         |_| {},
     )
     .expect("runs");
@@ -516,8 +519,16 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
 
 #[test]
 fn refusals_are_counted_by_reason_and_budget_stops_and_panics_fail() {
-    let s = domain_campaign_with(&Faulty("refuses"), 8, 1, None, &Runner::InProcess, |_| {})
-        .expect("runs");
+    let s = domain_campaign_with(
+        &Faulty("refuses"),
+        8,
+        1,
+        None,
+        &Runner::InProcess,
+        1,
+        |_| {},
+    )
+    .expect("runs");
     assert_eq!((s.refused, s.failures), (8, 0), "{s}");
     assert_eq!(
         s.refusals.keys().collect::<Vec<_>>(),
@@ -527,7 +538,7 @@ fn refusals_are_counted_by_reason_and_budget_stops_and_panics_fail() {
     assert_eq!(s.refusals["NearBoundary"].count, 8);
     assert!(s.families.iter().all(|f| f.refused == 1), "{s}");
     for fault in ["stops early", "panics"] {
-        let s = domain_campaign_with(&Faulty(fault), 3, 1, None, &Runner::InProcess, |_| {})
+        let s = domain_campaign_with(&Faulty(fault), 3, 1, None, &Runner::InProcess, 1, |_| {})
             .expect("runs");
         assert_eq!((s.failures, s.refused), (3, 0), "{fault}: {s}");
         let reason = if fault == "panics" {
@@ -595,4 +606,41 @@ fn the_command_line_runs_a_domain_campaign_and_refuses_a_mesher_without_segments
         text.contains("does not keep segments") && text.contains("lsb"),
         "{text}"
     );
+}
+
+#[test]
+fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_times() {
+    let saalfeld = |jobs: usize| {
+        let mut done = Vec::new();
+        let mut s = domain_campaign("saalfeld", 40, 7, None, &Runner::InProcess, jobs, |d| {
+            done.push(d)
+        })
+        .expect("saalfeld keeps segments");
+        // Progress counts the cases in order, however they complete.
+        assert_eq!(done, (1..=40).collect::<Vec<u64>>(), "{jobs} jobs");
+        s.slowest = None;
+        s
+    };
+    let one = saalfeld(1);
+    assert_eq!(one.cases, 40, "{one}");
+    assert!(one.passed > 0, "{one}");
+    assert_eq!(saalfeld(3), one);
+    // Failures are listed in case order too.
+    let faulty = |jobs: usize| {
+        let mut s = domain_campaign_with(
+            &Faulty("drops a triangle"),
+            9,
+            5,
+            None,
+            &Runner::InProcess,
+            jobs,
+            |_| {},
+        )
+        .expect("runs");
+        s.slowest = None;
+        s
+    };
+    let one = faulty(1);
+    assert_eq!(one.failures, 9, "{one}");
+    assert_eq!(faulty(4), one);
 }

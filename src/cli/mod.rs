@@ -114,6 +114,10 @@ struct FuzzArgs {
     /// failing cases are only reported, and `--seed` with the case number reproduces them.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// With --domains: how many cases are meshed side by side, each on one thread (the
+    /// summary is the same for any number but for the times).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u64).range(1..=1024))]
+    jobs: u64,
 }
 
 #[derive(Args)]
@@ -765,6 +769,13 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
     if args.domains {
         return fuzz_domains(args);
     }
+    if args.jobs > 1 {
+        return Err(Error::Usage(
+            "--jobs runs cases side by side only in a campaign on domains (--domains); a \
+             campaign on point sets runs one case at a time"
+                .to_string(),
+        ));
+    }
     if !matches!(args.mesher.as_str(), "hex" | "hex-simple" | "hex-tiled") {
         crate::registry::mesher(&args.mesher)?;
     }
@@ -900,6 +911,7 @@ fn fuzz_domains(args: &FuzzArgs) -> Result<ExitCode> {
         args.seed,
         args.out.as_deref(),
         &runner,
+        args.jobs as usize,
         |done| bar.set(done),
     );
     bar.finish();

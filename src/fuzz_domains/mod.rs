@@ -220,20 +220,26 @@ pub fn domain_campaign(
     seed: u64,
     out: Option<&Path>,
     runner: &Runner,
+    jobs: usize,
     progress: impl FnMut(u64),
 ) -> Result<DomainSummary> {
     let m = crate::registry::mesher(mesher)?;
-    domain_campaign_with(m.as_ref(), cases, seed, out, runner, progress)
+    domain_campaign_with(m.as_ref(), cases, seed, out, runner, jobs, progress)
 }
 
 /// `domain_campaign` with a mesher given as such (an isolated runner runs the registered
 /// mesher of its name).
+///
+/// `jobs` cases are meshed side by side (at least one), each on one thread of the mesher's
+/// when there are several: the summary is folded in case order, so it is the same for any
+/// number of jobs but for the times (`slowest`).
 pub fn domain_campaign_with(
     m: &dyn Mesher,
     cases: u64,
     seed: u64,
     out: Option<&Path>,
     runner: &Runner,
+    jobs: usize,
     mut progress: impl FnMut(u64),
 ) -> Result<DomainSummary> {
     let mesher = m.name();
@@ -244,7 +250,11 @@ pub fn domain_campaign_with(
             segment_meshers().join(", ")
         )));
     }
-    let params = case_params(mesher).0.with_budget(case_budget());
+    let jobs = jobs.max(1);
+    let mut params = case_params(mesher).0.with_budget(case_budget());
+    if jobs > 1 {
+        params = params.with_threads(std::num::NonZeroUsize::MIN);
+    }
     // What the mesher promises for these parameters (a reference: the angle it is asked for).
     let bounds = m.promise(&params);
     let mut summary = DomainSummary {
@@ -278,77 +288,126 @@ pub fn domain_campaign_with(
         first_failure: None,
         failed: Vec::new(),
     };
-    for case in 0..cases {
-        let generated = generate_case(seed, case);
-        let (family, input) = (generated.family, &generated.input);
-        let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
-        summary.cases += 1;
-        summary.families[fam].cases += 1;
-        if generated.redraws == MAX_REDRAWS {
-            summary.fallbacks += 1;
-        }
-        let start = std::time::Instant::now();
-        let outcome = run_case(m, input, &params, &bounds, runner);
-        let secs = start.elapsed().as_secs_f64();
-        if summary.slowest.is_none_or(|(s, _)| secs > s) {
-            summary.slowest = Some((secs, case));
-        }
-        match outcome {
-            Outcome::Passed(v) => {
-                summary.passed += 1;
-                let m = &v.metrics;
-                summary.min_angle = min_opt(summary.min_angle, m.min_angle.map(|w| w.value));
-                summary.max_angle = max_opt(summary.max_angle, m.max_angle.map(|w| w.value));
-                if let Some(split) = &v.split {
-                    let (near, inner) = (&split.near, &split.interior);
-                    summary.near_min_angle =
-                        min_opt(summary.near_min_angle, near.min_angle.map(|w| w.value));
-                    summary.near_max_angle =
-                        max_opt(summary.near_max_angle, near.max_angle.map(|w| w.value));
-                    summary.interior_min_angle =
-                        min_opt(summary.interior_min_angle, inner.min_angle.map(|w| w.value));
-                    let kept = v
-                        .checks
-                        .iter()
-                        .find(|c| c.what == "min angle near segments (deg)")
-                        .and_then(|c| c.value);
-                    summary.near_min_angle_kept = min_opt(summary.near_min_angle_kept, kept);
-                    summary.interior_max_angle =
-                        max_opt(summary.interior_max_angle, inner.max_angle.map(|w| w.value));
+    // Each job takes the next case, meshes it and sends it back; the cases are folded in
+    // order as they complete.
+    let next = std::sync::atomic::AtomicU64::new(0);
+    let (send, done) = std::sync::mpsc::channel::<(u64, DomainCase, Outcome, f64)>();
+    std::thread::scope(|scope| {
+        for _ in 0..jobs {
+            let send = send.clone();
+            let (next, params, bounds) = (&next, &params, &bounds);
+            scope.spawn(move || loop {
+                let case = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if case >= cases {
+                    break;
                 }
-                summary.max_triangles = summary.max_triangles.max(m.triangles);
+                let generated = generate_case(seed, case);
+                let start = std::time::Instant::now();
+                let outcome = run_case(m, &generated.input, params, bounds, runner);
+                let secs = start.elapsed().as_secs_f64();
+                if send.send((case, generated, outcome, secs)).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(send);
+        let mut waiting = BTreeMap::new();
+        for item in done {
+            waiting.insert(item.0, item);
+            while let Some((case, generated, outcome, secs)) = waiting.remove(&summary.cases) {
+                fold_case(
+                    &mut summary,
+                    case,
+                    &generated,
+                    outcome,
+                    secs,
+                    out,
+                    mesher,
+                    seed,
+                );
+                progress(case + 1);
             }
-            Outcome::Refused(problem, message) => {
-                summary.refused += 1;
-                summary.families[fam].refused += 1;
-                count(
-                    &mut summary.refusals,
-                    refusal_reason(&problem),
+        }
+    });
+    Ok(summary)
+}
+
+/// Case `case` of a campaign (meshed in `secs` seconds) added to `summary`; a failure's
+/// input written into `out`, if given.
+#[allow(clippy::too_many_arguments)]
+fn fold_case(
+    summary: &mut DomainSummary,
+    case: u64,
+    generated: &DomainCase,
+    outcome: Outcome,
+    secs: f64,
+    out: Option<&Path>,
+    mesher: &str,
+    seed: u64,
+) {
+    let (family, input) = (generated.family, &generated.input);
+    let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
+    summary.cases += 1;
+    summary.families[fam].cases += 1;
+    if generated.redraws == MAX_REDRAWS {
+        summary.fallbacks += 1;
+    }
+    if summary.slowest.is_none_or(|(s, _)| secs > s) {
+        summary.slowest = Some((secs, case));
+    }
+    match outcome {
+        Outcome::Passed(v) => {
+            summary.passed += 1;
+            let m = &v.metrics;
+            summary.min_angle = min_opt(summary.min_angle, m.min_angle.map(|w| w.value));
+            summary.max_angle = max_opt(summary.max_angle, m.max_angle.map(|w| w.value));
+            if let Some(split) = &v.split {
+                let (near, inner) = (&split.near, &split.interior);
+                summary.near_min_angle =
+                    min_opt(summary.near_min_angle, near.min_angle.map(|w| w.value));
+                summary.near_max_angle =
+                    max_opt(summary.near_max_angle, near.max_angle.map(|w| w.value));
+                summary.interior_min_angle =
+                    min_opt(summary.interior_min_angle, inner.min_angle.map(|w| w.value));
+                let kept = v
+                    .checks
+                    .iter()
+                    .find(|c| c.what == "min angle near segments (deg)")
+                    .and_then(|c| c.value);
+                summary.near_min_angle_kept = min_opt(summary.near_min_angle_kept, kept);
+                summary.interior_max_angle =
+                    max_opt(summary.interior_max_angle, inner.max_angle.map(|w| w.value));
+            }
+            summary.max_triangles = summary.max_triangles.max(m.triangles);
+        }
+        Outcome::Refused(problem, message) => {
+            summary.refused += 1;
+            summary.families[fam].refused += 1;
+            count(
+                &mut summary.refusals,
+                refusal_reason(&problem),
+                case,
+                family,
+                &message,
+            );
+        }
+        Outcome::Failed(Failure { reason, message }) => {
+            count(&mut summary.failure_reasons, reason, case, family, &message);
+            summary.failures += 1;
+            summary.families[fam].failures += 1;
+            record_failure(
+                &mut summary.failed,
+                &mut summary.first_failure,
+                FuzzFailure {
                     case,
                     family,
-                    &message,
-                );
-            }
-            Outcome::Failed(Failure { reason, message }) => {
-                count(&mut summary.failure_reasons, reason, case, family, &message);
-                summary.failures += 1;
-                summary.families[fam].failures += 1;
-                record_failure(
-                    &mut summary.failed,
-                    &mut summary.first_failure,
-                    FuzzFailure {
-                        case,
-                        family,
-                        message,
-                        path: None,
-                    },
-                    out.map(|dir| move || write_failure(dir, mesher, seed, case, family, input)),
-                );
-            }
+                    message,
+                    path: None,
+                },
+                out.map(|dir| move || write_failure(dir, mesher, seed, case, family, input)),
+            );
         }
-        progress(case + 1);
     }
-    Ok(summary)
 }
 
 /// The registered meshers and variants that keep segments.

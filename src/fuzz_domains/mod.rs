@@ -288,24 +288,41 @@ pub fn domain_campaign_with(
         first_failure: None,
         failed: Vec::new(),
     };
+    let work = |case: u64| {
+        let generated = generate_case(seed, case);
+        let start = std::time::Instant::now();
+        let outcome = run_case(m, &generated.input, &params, &bounds, runner);
+        (case, generated, outcome, start.elapsed().as_secs_f64())
+    };
+    if jobs == 1 {
+        // On the calling thread (its stack), as before there were jobs.
+        for case in 0..cases {
+            let (case, generated, outcome, secs) = work(case);
+            fold_case(
+                &mut summary,
+                case,
+                &generated,
+                outcome,
+                secs,
+                out,
+                mesher,
+                seed,
+            );
+            progress(case + 1);
+        }
+        return Ok(summary);
+    }
     // Each job takes the next case, meshes it and sends it back; the cases are folded in
     // order as they complete.
     let next = std::sync::atomic::AtomicU64::new(0);
-    let (send, done) = std::sync::mpsc::channel::<(u64, DomainCase, Outcome, f64)>();
+    let (send, done) = std::sync::mpsc::channel();
     std::thread::scope(|scope| {
         for _ in 0..jobs {
             let send = send.clone();
-            let (next, params, bounds) = (&next, &params, &bounds);
+            let (next, work) = (&next, &work);
             scope.spawn(move || loop {
                 let case = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                if case >= cases {
-                    break;
-                }
-                let generated = generate_case(seed, case);
-                let start = std::time::Instant::now();
-                let outcome = run_case(m, &generated.input, params, bounds, runner);
-                let secs = start.elapsed().as_secs_f64();
-                if send.send((case, generated, outcome, secs)).is_err() {
+                if case >= cases || send.send(work(case)).is_err() {
                     break;
                 }
             });

@@ -294,58 +294,51 @@ pub fn domain_campaign_with(
         let outcome = run_case(m, &generated.input, &params, &bounds, runner);
         (case, generated, outcome, start.elapsed().as_secs_f64())
     };
+    // Each case meshed is added to the summary in case order.
+    let mut fold = |(case, generated, outcome, secs): (u64, DomainCase, Outcome, f64)| {
+        fold_case(
+            &mut summary,
+            case,
+            &generated,
+            outcome,
+            secs,
+            out,
+            mesher,
+            seed,
+        );
+        progress(case + 1);
+    };
     if jobs == 1 {
         // On the calling thread (its stack), as before there were jobs.
-        for case in 0..cases {
-            let (case, generated, outcome, secs) = work(case);
-            fold_case(
-                &mut summary,
-                case,
-                &generated,
-                outcome,
-                secs,
-                out,
-                mesher,
-                seed,
-            );
-            progress(case + 1);
-        }
-        return Ok(summary);
-    }
-    // Each job takes the next case, meshes it and sends it back; the cases are folded in
-    // order as they complete.
-    let next = std::sync::atomic::AtomicU64::new(0);
-    let (send, done) = std::sync::mpsc::channel();
-    std::thread::scope(|scope| {
-        for _ in 0..jobs {
-            let send = send.clone();
-            let (next, work) = (&next, &work);
-            scope.spawn(move || loop {
-                let case = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                if case >= cases || send.send(work(case)).is_err() {
-                    break;
-                }
-            });
-        }
-        drop(send);
-        let mut waiting = BTreeMap::new();
-        for item in done {
-            waiting.insert(item.0, item);
-            while let Some((case, generated, outcome, secs)) = waiting.remove(&summary.cases) {
-                fold_case(
-                    &mut summary,
-                    case,
-                    &generated,
-                    outcome,
-                    secs,
-                    out,
-                    mesher,
-                    seed,
-                );
-                progress(case + 1);
+        (0..cases).for_each(|case| fold(work(case)));
+    } else {
+        // Each job takes the next case, meshes it and sends it back; the cases are folded
+        // in order as they complete.
+        let next = std::sync::atomic::AtomicU64::new(0);
+        let (send, done) = std::sync::mpsc::channel();
+        std::thread::scope(|scope| {
+            for _ in 0..jobs {
+                let send = send.clone();
+                let (next, work) = (&next, &work);
+                scope.spawn(move || loop {
+                    let case = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    if case >= cases || send.send(work(case)).is_err() {
+                        break;
+                    }
+                });
             }
-        }
-    });
+            drop(send);
+            let mut waiting = BTreeMap::new();
+            let mut folded = 0;
+            for item in done {
+                waiting.insert(item.0, item);
+                while let Some(item) = waiting.remove(&folded) {
+                    fold(item);
+                    folded += 1;
+                }
+            }
+        });
+    }
     Ok(summary)
 }
 

@@ -292,20 +292,18 @@ pub fn domain_campaign_with(
         let generated = generate_case(seed, case);
         let start = std::time::Instant::now();
         let outcome = run_case(m, &generated.input, &params, &bounds, runner);
-        (case, generated, outcome, start.elapsed().as_secs_f64())
-    };
-    // Each case meshed is added to the summary in case order.
-    let mut fold = |(case, generated, outcome, secs): (u64, DomainCase, Outcome, f64)| {
-        fold_case(
-            &mut summary,
+        let secs = start.elapsed().as_secs_f64();
+        Meshed {
             case,
-            &generated,
+            generated,
             outcome,
             secs,
-            out,
-            mesher,
-            seed,
-        );
+        }
+    };
+    // Each case meshed is added to the summary in case order.
+    let mut fold = |meshed: Meshed| {
+        let case = meshed.case;
+        fold_case(&mut summary, meshed, out, mesher, seed);
         progress(case + 1);
     };
     if jobs == 1 {
@@ -331,7 +329,7 @@ pub fn domain_campaign_with(
             let mut waiting = BTreeMap::new();
             let mut folded = 0;
             for item in done {
-                waiting.insert(item.0, item);
+                waiting.insert(item.case, item);
                 while let Some(item) = waiting.remove(&folded) {
                     fold(item);
                     folded += 1;
@@ -342,19 +340,30 @@ pub fn domain_campaign_with(
     Ok(summary)
 }
 
-/// Case `case` of a campaign (meshed in `secs` seconds) added to `summary`; a failure's
-/// input written into `out`, if given.
-#[allow(clippy::too_many_arguments)]
-fn fold_case(
-    summary: &mut DomainSummary,
+/// One case of a campaign as meshed: its number, its domain, what came of it and how many
+/// seconds it took.
+struct Meshed {
     case: u64,
-    generated: &DomainCase,
+    generated: DomainCase,
     outcome: Outcome,
     secs: f64,
+}
+
+/// A case of campaign `seed` added to `summary`; a failure's input written into `out`, if
+/// given.
+fn fold_case(
+    summary: &mut DomainSummary,
+    meshed: Meshed,
     out: Option<&Path>,
     mesher: &str,
     seed: u64,
 ) {
+    let Meshed {
+        case,
+        generated,
+        outcome,
+        secs,
+    } = meshed;
     let (family, input) = (generated.family, &generated.input);
     let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
     summary.cases += 1;

@@ -426,7 +426,9 @@ pub fn prepare(
     // bounds, by more than placing their corners explains (`placed`).
     for (t, kept) in mesh.triangles.iter().zip(keep.iter_mut()).filter(|x| *x.1) {
         let p = t.map(|v| position[v as usize]);
-        let bounded = super::boxes::score(p[0], p[1], p[2]).is_some_and(|g| g >= -placed(p));
+        // The placement's share is computed only for the few triangles past `SLACK`.
+        let bounded = super::boxes::score(p[0], p[1], p[2])
+            .is_some_and(|g| g >= -super::boxes::SLACK || g >= -placed(p));
         if t.iter().any(|&v| gone[v as usize]) || !bounded {
             *kept = false;
         }
@@ -447,11 +449,11 @@ pub fn prepare(
 /// placing its corners by one rounding each explains (`rounding::placement_allowance`, the
 /// largest of its three angles'). The lattice's own triangles are in bounds in real
 /// arithmetic, but where they are small against their coordinates their angles come out
-/// beyond `SLACK` alone: a right triangle of a size change, sides 4e-6 to 8e-6 at x ≈ −0.78, measured
-/// 90.0000000015° (fuzz case 54 of seed 1). Deleted, it left a hole in the kept lattice,
-/// an island whose erosions grew it a ring a round (3, 9, 17, 23 corners) on every lattice
-/// the run made, until the ladders beside the short segment failed: cases 46, 54 and 118
-/// of seed 1 failed so after three finer bands, and mesh with none.
+/// beyond `SLACK` alone: a right triangle of a size change, sides 4e-6 to 8e-6 at
+/// x ≈ −0.78, measured 90.0000000015° (fuzz case 54 of seed 1). Deleted, it left a hole in
+/// the kept lattice, an island whose erosions grew it a ring a round (3, 9, 17, 23 corners)
+/// on every lattice the run made, until the ladders beside the short segment failed: cases
+/// 46, 54 and 118 of seed 1 failed so after three finer bands, and mesh with none.
 fn placed(t: [Point; 3]) -> f64 {
     use crate::quality::rounding::placement_allowance;
     let most = (0..3)

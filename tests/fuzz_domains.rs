@@ -612,14 +612,25 @@ fn the_command_line_runs_a_domain_campaign_and_refuses_a_mesher_without_segments
 fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_times() {
     let saalfeld = |jobs: usize| {
         let mut done = Vec::new();
-        let mut s = domain_campaign("saalfeld", 40, 7, None, &Runner::InProcess, jobs, |d| {
+        let s = domain_campaign("saalfeld", 40, 7, None, &Runner::InProcess, jobs, |d| {
             done.push(d)
         })
         .expect("saalfeld keeps segments");
         // Progress counts the cases in order, however they complete.
         assert_eq!(done, (1..=40).collect::<Vec<u64>>(), "{jobs} jobs");
-        s.slowest = None;
-        s
+        // Each family's time is its cases' own: the slowest case is the slowest of one
+        // family, and no family's slowest case took longer than the family.
+        let (slowest, _) = s.slowest.expect("40 cases were timed");
+        let family_slowest = s.family_times.iter().filter_map(|t| t.slowest);
+        assert_eq!(
+            family_slowest.map(|(secs, _)| secs).fold(0.0, f64::max),
+            slowest
+        );
+        for (c, t) in s.families.iter().zip(&s.family_times) {
+            assert_eq!(t.slowest.is_some(), c.cases > 0, "{s}");
+            assert!(t.slowest.is_none_or(|(secs, _)| secs <= t.seconds), "{s}");
+        }
+        s.without_times()
     };
     let one = saalfeld(1);
     assert_eq!(one.cases, 40, "{one}");
@@ -627,7 +638,7 @@ fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_t
     assert_eq!(saalfeld(3), one);
     // Failures are listed in case order too.
     let faulty = |jobs: usize| {
-        let mut s = domain_campaign_with(
+        domain_campaign_with(
             &Faulty("drops a triangle"),
             9,
             5,
@@ -636,9 +647,8 @@ fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_t
             jobs,
             |_| {},
         )
-        .expect("runs");
-        s.slowest = None;
-        s
+        .expect("runs")
+        .without_times()
     };
     let one = faulty(1);
     assert_eq!(one.failures, 9, "{one}");

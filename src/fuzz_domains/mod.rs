@@ -136,9 +136,31 @@ pub struct DomainSummary {
     pub slowest: Option<(f64, u64)>,
     /// Cases, refusals and failures per family, in the order of `FAMILIES`.
     pub families: Vec<FamilyCounts>,
+    /// Seconds per family, in the order of `FAMILIES`: where a campaign's time goes.
+    pub family_times: Vec<FamilyTime>,
     pub first_failure: Option<FuzzFailure>,
     /// Every failing case: case number, family, where its input was written.
     pub failed: Vec<(u64, &'static str, Option<PathBuf>)>,
+}
+
+/// The seconds a family's cases took, every outcome counted.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FamilyTime {
+    /// All its cases together.
+    pub seconds: f64,
+    /// Its slowest case (seconds, case number).
+    pub slowest: Option<(f64, u64)>,
+}
+
+impl DomainSummary {
+    /// The summary with its times cleared: what is the same for any number of jobs.
+    pub fn without_times(mut self) -> Self {
+        self.slowest = None;
+        for t in &mut self.family_times {
+            *t = FamilyTime::default();
+        }
+        self
+    }
 }
 
 /// How one case ended.
@@ -285,6 +307,7 @@ pub fn domain_campaign_with(
                 failures: 0,
             })
             .collect(),
+        family_times: vec![FamilyTime::default(); FAMILIES.len()],
         first_failure: None,
         failed: Vec::new(),
     };
@@ -373,6 +396,11 @@ fn fold_case(
     }
     if summary.slowest.is_none_or(|(s, _)| secs > s) {
         summary.slowest = Some((secs, case));
+    }
+    let time = &mut summary.family_times[fam];
+    time.seconds += secs;
+    if time.slowest.is_none_or(|(s, _)| secs > s) {
+        time.slowest = Some((secs, case));
     }
     match outcome {
         Outcome::Passed(v) => {
@@ -611,12 +639,16 @@ impl fmt::Display for DomainSummary {
                 self.fallbacks
             )?;
         }
-        for c in &self.families {
-            writeln!(
+        for (c, t) in self.families.iter().zip(&self.family_times) {
+            write!(
                 f,
-                "  {:<18} {:>7} cases, {:>6} refused, {:>5} failed",
-                c.family, c.cases, c.refused, c.failures
+                "  {:<18} {:>7} cases, {:>6} refused, {:>5} failed, {:>9.1} s",
+                c.family, c.cases, c.refused, c.failures, t.seconds
             )?;
+            match t.slowest {
+                Some((secs, case)) => writeln!(f, " (slowest: case {case}, {secs:.1} s)")?,
+                None => writeln!(f)?,
+            }
         }
         if let Some(first) = &self.first_failure {
             writeln!(

@@ -13,8 +13,8 @@
 //! Sec. 5.6), with cases its text leaves partly open (the figures are missing from it). The
 //! fan leaves the lattice as the tree made it and searches the rays' angles and radii.
 
-use super::boxes::{ladder, score, Failure, Vertex};
-use super::fill::{wedge, wedge_triangles, whole_corner, WedgeVertex};
+use super::boxes::{key, ladder, Failure, Vertex};
+use super::fill::{wedge, wedge_triangles, whole_corner_key, WedgeVertex};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 
 /// Numbers in [0, 1) from `seed`, the same on every machine (a linear congruential
@@ -206,10 +206,10 @@ pub fn corner(
                 // when sharper than 30°.
                 let (p, q) = (inner[k], inner[k0]);
                 if matches!((a, b), (Place::W(_), Place::V(_))) && alpha < 30.0 {
-                    let g = whole_corner(c, p, q);
+                    let g = whole_corner_key(c, p, q);
                     return (g > f64::NEG_INFINITY).then_some(g);
                 }
-                score(c, p, q)
+                key(c, p, q)
             }
         }
     };

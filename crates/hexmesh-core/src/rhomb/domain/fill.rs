@@ -15,7 +15,7 @@
 use crate::hex::fxhash::FxHashMap;
 
 use super::blocks::Blocks;
-use super::boxes::{box_points, score, Floor, Vertex};
+use super::boxes::{box_points, key, key_of, over_key, sin_cos, Vertex};
 use super::cut::{Cut, Segments};
 use super::input::Domain;
 use super::pieces::{solve, Chain, Pieces, Words};
@@ -144,6 +144,25 @@ pub fn whole_corner(c: Point, p: Point, q: Point) -> f64 {
     x.min(y) - 30.0
 }
 
+/// `key_of(whole_corner(c, p, q))`, up to rounding, without an arc tangent (`boxes::key`).
+pub fn whole_corner_key(c: Point, p: Point, q: Point) -> f64 {
+    if orient2d(c, p, q) <= 0.0 {
+        return f64::NEG_INFINITY;
+    }
+    let scale = dist(p, q).max(dist(q, c)).max(dist(c, p));
+    let (Some(at_p), Some(at_q)) = (sin_cos(p, q, c, scale), sin_cos(q, c, p, scale)) else {
+        return key_of(whole_corner(c, p, q));
+    };
+    // At most one of the two exceeds 90°; within 1e-12 of a right angle the measured
+    // degrees decide, as in `whole_corner` (even an exact right angle may measure
+    // 90.00000000000001°).
+    match (at_p, at_q) {
+        ((_, cos), _) | (_, (_, cos)) if cos.abs() <= 1e-12 => key_of(whole_corner(c, p, q)),
+        ((sin, cos), _) | (_, (sin, cos)) if cos < 0.0 => over_key(sin, cos),
+        ((sp, _), (sq, _)) => sp.min(sq),
+    }
+}
+
 /// How the wedge below rung (a, b) was reached: the triangle at c, or a piece of W from rung
 /// (a0, b), or of V from (a, b0).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -169,29 +188,25 @@ pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point], rows: &[usize]) -
     for a in 0..na {
         for b in 0..rows[a].min(nb) {
             let tip = if alpha < 30.0 {
-                whole_corner(c, vs[b], ws[a])
+                whole_corner_key(c, vs[b], ws[a])
             } else {
-                score(c, vs[b], ws[a]).unwrap_or(f64::NEG_INFINITY)
+                key(c, vs[b], ws[a]).unwrap_or(f64::NEG_INFINITY)
             };
             let mut cell = (tip, WedgeStep::Tip);
-            // A triangle whose smallest angle cannot beat the cell is not scored (`Floor`).
-            let mut floor = Floor::of(cell.0);
             for a0 in a.saturating_sub(SPAN)..a {
-                if best[a0][b].0 > cell.0 && floor.may_reach(vs[b], ws[a], ws[a0]) {
-                    if let Some(g) = score(vs[b], ws[a], ws[a0]) {
+                if best[a0][b].0 > cell.0 {
+                    if let Some(g) = key(vs[b], ws[a], ws[a0]) {
                         if best[a0][b].0.min(g) > cell.0 {
                             cell = (best[a0][b].0.min(g), WedgeStep::W(a0));
-                            floor = Floor::of(cell.0);
                         }
                     }
                 }
             }
             for b0 in b.saturating_sub(SPAN)..b {
-                if best[a][b0].0 > cell.0 && floor.may_reach(vs[b0], vs[b], ws[a]) {
-                    if let Some(g) = score(vs[b0], vs[b], ws[a]) {
+                if best[a][b0].0 > cell.0 {
+                    if let Some(g) = key(vs[b0], vs[b], ws[a]) {
                         if best[a][b0].0.min(g) > cell.0 {
                             cell = (best[a][b0].0.min(g), WedgeStep::V(b0));
-                            floor = Floor::of(cell.0);
                         }
                     }
                 }
@@ -681,19 +696,19 @@ fn fill_polygon(
                     return Some(v);
                 }
                 let g = if alpha[j] < 30.0 {
-                    whole_corner(ring[j], inner[k1], inner[k0])
+                    whole_corner_key(ring[j], inner[k1], inner[k0])
                 } else {
-                    score(ring[j], inner[k1], inner[k0]).unwrap_or(f64::NEG_INFINITY)
+                    key(ring[j], inner[k1], inner[k0]).unwrap_or(f64::NEG_INFINITY)
                 };
                 (g > f64::NEG_INFINITY).then_some(g)
             }
             (Place::Side(s, _), Place::Ray(j, _)) if corner_of(s) == j => {
-                score(ring[j], inner[k1], inner[k0])
+                key(ring[j], inner[k1], inner[k0])
             }
             (Place::Ray(j, a), Place::Ray(j1, b)) if j == j1 && b < a => {
-                score(ring[j], inner[k1], inner[k0])
+                key(ring[j], inner[k1], inner[k0])
             }
-            (Place::Ray(j, _), Place::Side(s, _)) if s == j => score(ring[j], inner[k1], inner[k0]),
+            (Place::Ray(j, _), Place::Side(s, _)) if s == j => key(ring[j], inner[k1], inner[k0]),
             _ => None,
         }
     };
@@ -907,6 +922,36 @@ fn fill_polygon(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::rhomb::domain::boxes::score_of;
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(1000))]
+
+        /// `whole_corner_key` orders triangles at a sharp corner as `whole_corner` does: its
+        /// key turned back into a score is the measured one within 1e-9°, at any scale and
+        /// with a right angle at p (rounded either way) or one turned a little past it.
+        #[test]
+        fn a_whole_corner_key_is_its_score_without_an_arc_tangent(
+            p in (-1.0..1.0f64, -1.0..1.0f64),
+            q in (-1.0..1.0f64, -1.0..1.0f64),
+            lift in -3.0..3.0f64,
+            bend in proptest::sample::select(vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 0.3, -0.3, 1.2]),
+            exponent in -300i32..300,
+        ) {
+            // c on the perpendicular to pq at p, turned by `bend` radians.
+            let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
+            let (cos, sin) = (bend.cos(), bend.sin());
+            let n = [-d[1] * cos - d[0] * sin, d[0] * cos - d[1] * sin];
+            let [c, p, q] = [[p.0 + lift * n[0], p.1 + lift * n[1]], [p.0, p.1], [q.0, q.1]]
+                .map(|x| [x[0] * scale, x[1] * scale]);
+            let (got, want) = (whole_corner_key(c, p, q), whole_corner(c, p, q));
+            if want == f64::NEG_INFINITY {
+                proptest::prop_assert_eq!(got, want);
+            } else {
+                proptest::prop_assert!((score_of(got) - want).abs() <= 1e-9, "{:?}: key {} score {}", [c, p, q], got, want);
+            }
+        }
+    }
 
     /// A corner of 10° at the origin: V along +x, W arriving along the ray at 10°.
     fn corner() -> (Point, Point, Point) {

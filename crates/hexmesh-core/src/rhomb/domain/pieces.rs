@@ -31,7 +31,8 @@ pub struct Pieces {
     pub threads: usize,
 }
 
-/// The link of a ladder (`boxes::ladder`), shared by the threads that solve pieces.
+/// The link of a ladder (`boxes::ladder`: a side's key, `boxes::key_of`), shared by the
+/// threads that solve pieces.
 pub type Link<'l> = &'l (dyn Fn(usize, usize) -> Option<f64> + Sync);
 
 /// A long key of words (a piece's content, a wedge's points), hashed a word at a time: as

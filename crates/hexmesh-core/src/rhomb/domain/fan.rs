@@ -176,7 +176,7 @@ pub fn corner(
     let cut = if tip == Tip::Wedge {
         let ws: Vec<Point> = inner[..w_end].iter().rev().copied().collect();
         let vs = &inner[v_start..];
-        wedge(c, alpha, &ws, vs, &vec![vs.len(); ws.len()])
+        wedge(c, alpha, &ws, vs, &vec![vs.len(); ws.len()], None)
     } else {
         Vec::new()
     };

@@ -43,13 +43,30 @@ pub struct Fill {
 }
 
 /// What a fill keeps from one erosion round to the next: the wedge tables of the sharp
-/// corners by their points (an erosion far from a corner leaves them as they were).
+/// corners by their points (an erosion far from a corner leaves them as they were), and
+/// each corner's latest table, whose cells a new one takes where its points near the
+/// corner are the same (`wedge`'s `from`).
 #[derive(Debug, Default)]
 pub struct Memo {
     /// Each table with a number in order of first use (for the pieces' keys).
     wedges: FxHashMap<Words, (u64, std::sync::Arc<WedgeTable>)>,
+    /// By the corner's place and angle (their bits): its latest table.
+    latest: FxHashMap<[u64; 3], Latest>,
     pieces: Pieces,
 }
+
+/// A corner's latest wedge table with the W and V points and rows it was built for.
+#[derive(Debug)]
+struct Latest {
+    ws: Vec<Point>,
+    vs: Vec<Point>,
+    rows: Vec<usize>,
+    table: std::sync::Arc<WedgeTable>,
+}
+
+/// A table to take cells from (`wedge`): the table, its rows, and how many of its first W
+/// and V points are the new table's first ones.
+pub type From<'t> = (&'t WedgeTable, &'t [usize], usize, usize);
 
 impl Memo {
     /// An empty memo whose pieces are solved on `threads` threads (`pieces::solve`).
@@ -180,13 +197,30 @@ pub enum WedgeStep {
 /// Only the cells (a, b) with b < `rows[a]` are computed (`rows` not increasing, at most
 /// `vs.len()`); the others stay −∞. A cell reads only cells below and left of it, so each
 /// computed cell is what the whole table would hold.
-pub fn wedge(c: Point, alpha: f64, ws: &[Point], vs: &[Point], rows: &[usize]) -> WedgeTable {
+///
+/// A cell is computed from the points ws[..=a] and vs[..=b] alone, so where `from` (a table
+/// for the same corner) shares the first W and V points, its cells there that it computed
+/// are taken as they are: after an erosion away from the corner, most of them.
+pub fn wedge(
+    c: Point,
+    alpha: f64,
+    ws: &[Point],
+    vs: &[Point],
+    rows: &[usize],
+    from: Option<From>,
+) -> WedgeTable {
     const SPAN: usize = 24;
     let (na, nb) = (ws.len(), vs.len());
     debug_assert!(rows.len() == na && rows.windows(2).all(|r| r[0] >= r[1]));
     let mut best = vec![vec![(f64::NEG_INFINITY, WedgeStep::Tip); nb]; na];
     for a in 0..na {
         for b in 0..rows[a].min(nb) {
+            if let Some((old, old_rows, pa, pb)) = from {
+                if a < pa && b < pb && b < old_rows[a] {
+                    best[a][b] = old[a][b];
+                    continue;
+                }
+            }
             let tip = if alpha < 30.0 {
                 whole_corner_key(c, vs[b], ws[a])
             } else {
@@ -662,14 +696,35 @@ fn fill_polygon(
                 .collect(),
         );
         let number = memo.wedges.len() as u64;
+        let corner = [ring[j][0], ring[j][1], alpha[j]].map(f64::to_bits);
+        let latest = memo.latest.get(&corner);
         let (number, table) = memo
             .wedges
             .entry(key)
             .or_insert_with(|| {
-                let table = wedge(ring[j], alpha[j], &wp, &vp, &rows);
+                let shared =
+                    |x: &[Point], y: &[Point]| x.iter().zip(y).take_while(|(p, q)| p == q).count();
+                let from = latest.map(|l| {
+                    (
+                        &*l.table,
+                        &l.rows[..],
+                        shared(&l.ws, &wp),
+                        shared(&l.vs, &vp),
+                    )
+                });
+                let table = wedge(ring[j], alpha[j], &wp, &vp, &rows, from);
                 (number, std::sync::Arc::new(table))
             })
             .clone();
+        memo.latest.insert(
+            corner,
+            Latest {
+                ws: wp,
+                vs: vp,
+                rows,
+                table: table.clone(),
+            },
+        );
         table_number[j] = number;
         wedges[j] = Some((
             ws.into_iter().map(|x| x.1).collect(),
@@ -991,10 +1046,10 @@ mod tests {
                 .map(|k| along(k, 5))
                 .map(|d| [d * t.cos(), d * t.sin()])
                 .collect();
-            let whole = wedge(c, alpha, &ws, &vs, &vec![vs.len(); ws.len()]);
+            let whole = wedge(c, alpha, &ws, &vs, &vec![vs.len(); ws.len()], None);
             // A staircase: row a keeps its first 60 − a cells, as rungs across a channel do.
             let rows: Vec<usize> = (0..ws.len()).map(|a| vs.len() - a).collect();
-            let cut = wedge(c, alpha, &ws, &vs, &rows);
+            let cut = wedge(c, alpha, &ws, &vs, &rows, None);
             let mut finite = 0;
             for a in 0..ws.len() {
                 for b in 0..vs.len() {
@@ -1007,6 +1062,46 @@ mod tests {
                 }
             }
             assert!(finite > 1000, "{alpha}: {finite}");
+        }
+    }
+
+    #[test]
+    fn a_wedge_table_taking_the_cells_of_one_with_the_same_first_points_is_the_table_built_whole() {
+        for alpha in [12.0f64, 45.0] {
+            let t = alpha.to_radians();
+            let c = [0.0, 0.0];
+            let along =
+                |k: usize, j: usize| 0.3 * 1.04f64.powi(k as i32) + 0.01 * ((k * j) % 7) as f64;
+            let side = |n: usize, j: usize, turn: f64| -> Vec<Point> {
+                (0..n)
+                    .map(|k| along(k, j))
+                    .map(|d| [d * turn.cos(), d * turn.sin()])
+                    .collect()
+            };
+            // The first table: 50 W points, 55 V points, a staircase of rows.
+            let (ws, vs) = (side(50, 5, t), side(55, 3, 0.0));
+            let rows: Vec<usize> = (0..ws.len())
+                .map(|a| (vs.len() - a / 2).min(vs.len()))
+                .collect();
+            let old = wedge(c, alpha, &ws, &vs, &rows, None);
+            // The next: W points from 30 on and V points from 40 on moved (an erosion), more
+            // of them, and other rows.
+            let mut ws2 = side(60, 5, t);
+            let mut vs2 = side(58, 3, 0.0);
+            for p in ws2.iter_mut().skip(30) {
+                *p = [p[0] * 1.01, p[1] * 1.01];
+            }
+            for p in vs2.iter_mut().skip(40) {
+                p[0] *= 1.02;
+            }
+            let rows2: Vec<usize> = (0..ws2.len()).map(|a| vs2.len() - a / 3).collect();
+            let whole = wedge(c, alpha, &ws2, &vs2, &rows2, None);
+            let taken = wedge(c, alpha, &ws2, &vs2, &rows2, Some((&old, &rows, 30, 40)));
+            assert_eq!(taken, whole, "{alpha}");
+            // The cells it may take are the old table's where the points are the same; had it
+            // taken the old cells past them, the tables would differ.
+            let wrong = wedge(c, alpha, &ws2, &vs2, &rows2, Some((&old, &rows, 50, 55)));
+            assert_ne!(wrong, whole, "{alpha}");
         }
     }
 }

@@ -1033,19 +1033,20 @@ mod tests {
         assert_eq!(rung_reach((w, c, v), &[short]), None);
     }
 
+    /// `n` points along the ray from the origin at angle `turn` (radians), at uneven
+    /// distances (growing, with a jitter that `j` varies): one side of a wedge.
+    fn side(n: usize, j: usize, turn: f64) -> Vec<Point> {
+        (0..n)
+            .map(|k| 0.3 * 1.04f64.powi(k as i32) + 0.01 * ((k * j) % 7) as f64)
+            .map(|d| [d * turn.cos(), d * turn.sin()])
+            .collect()
+    }
+
     #[test]
     fn a_wedge_table_cut_to_the_rungs_read_holds_what_the_whole_table_holds_there() {
         for alpha in [12.0f64, 45.0] {
-            let t = alpha.to_radians();
             let c = [0.0, 0.0];
-            // Points along both sides at uneven distances (growing, with a jitter).
-            let along =
-                |k: usize, j: usize| 0.3 * 1.04f64.powi(k as i32) + 0.01 * ((k * j) % 7) as f64;
-            let vs: Vec<Point> = (0..60).map(|k| [along(k, 3), 0.0]).collect();
-            let ws: Vec<Point> = (0..60)
-                .map(|k| along(k, 5))
-                .map(|d| [d * t.cos(), d * t.sin()])
-                .collect();
+            let (ws, vs) = (side(60, 5, alpha.to_radians()), side(60, 3, 0.0));
             let whole = wedge(c, alpha, &ws, &vs, &vec![vs.len(); ws.len()], None);
             // A staircase: row a keeps its first 60 − a cells, as rungs across a channel do.
             let rows: Vec<usize> = (0..ws.len()).map(|a| vs.len() - a).collect();
@@ -1070,14 +1071,6 @@ mod tests {
         for alpha in [12.0f64, 45.0] {
             let t = alpha.to_radians();
             let c = [0.0, 0.0];
-            let along =
-                |k: usize, j: usize| 0.3 * 1.04f64.powi(k as i32) + 0.01 * ((k * j) % 7) as f64;
-            let side = |n: usize, j: usize, turn: f64| -> Vec<Point> {
-                (0..n)
-                    .map(|k| along(k, j))
-                    .map(|d| [d * turn.cos(), d * turn.sin()])
-                    .collect()
-            };
             // The first table: 50 W points, 55 V points, a staircase of rows.
             let (ws, vs) = (side(50, 5, t), side(55, 3, 0.0));
             let rows: Vec<usize> = (0..ws.len())

@@ -400,14 +400,13 @@ pub fn strip(front: &[Point], a: Point, b: Point) -> Result<Strip, Failure> {
 /// lies between them, in order, the domain on the left walking along `inner`). Each
 /// triangle joins a side of one chain to a vertex of the other, counter-clockwise. A side
 /// along `inner` may run from point k0 to a later point k (k0 at least `back[k]`, or `span`
-/// before k when `back` is empty), leaving out
-/// those between, when `link(k0, k)` allows it: `Some(key)` of the triangle that side
-/// brings on its other side (a fan triangle at a corner, its score as a `key_of`; infinity
-/// when none), `None` when it may not. Front corner i meets only the inner points of `window[i]` (inclusive). The
-/// ladder runs from the edge (front[0], inner[window[0].0]) to (front[m−1],
-/// inner[window[m−1].1]) and maximises the smallest angle with every angle in [30°, 90°]
-/// within `SLACK`. Returns that margin above 30° and the triangles, `Segment(k)` naming
-/// inner point k.
+/// before k when `back` is empty), leaving out those between, when `link(k0, k)` allows
+/// it: `Some(key)` of the triangle that side brings on its other side (a fan triangle at a
+/// corner, its score as a `key_of`; infinity when none), `None` when it may not. Front
+/// corner i meets only the inner points of `window[i]` (inclusive). The ladder runs from
+/// the edge (front[0], inner[window[0].0]) to (front[m−1], inner[window[m−1].1]) and
+/// maximises the smallest angle with every angle in [30°, 90°] within `SLACK`. Returns
+/// that margin above 30° (degrees) and the triangles, `Segment(k)` naming inner point k.
 pub fn ladder(
     front: &[Point],
     inner: &[Point],
@@ -426,8 +425,8 @@ pub fn ladder(
     // best[i]: for k in its window (from `lo`), the best (margin, triangle count, step) of a
     // ladder from the start to the edge (front i, inner k), the margin as a key (`key_of`:
     // the sine of the smallest angle, which orders ladders as the angle does and is
-    // computed without an arc tangent; those were two thirds of a campaign's time). Only the window is stored: a
-    // polygon's chain may hold tens of thousands of points.
+    // computed without an arc tangent; those were two thirds of a campaign's time). Only
+    // the window is stored: a polygon's chain may hold tens of thousands of points.
     let mut best: Vec<(usize, Vec<Cell>)> = Vec::with_capacity(m);
     let get = |best: &[(usize, Vec<Cell>)], i: usize, k: usize| -> Cell {
         let (lo, row) = &best[i];
@@ -454,8 +453,8 @@ pub fn ladder(
             if i == 0 && k == window[0].0 {
                 take(&mut cell, (f64::INFINITY, 0, Step::Start));
             }
-            // A candidate whose path is already worse than the cell cannot win: its score
-            // (two arc tangents) is not needed.
+            // A candidate whose path is already worse than the cell cannot win: its key is
+            // not needed.
             let hopeless = |cell: &Cell, mm: f64, c: usize| {
                 cell.is_some_and(|(best, count, _)| mm < best || (mm == best && c + 1 >= count))
             };
@@ -797,7 +796,9 @@ mod tests {
             p in (-1.0..1.0f64, -1.0..1.0f64),
             q in (-1.0..1.0f64, -1.0..1.0f64),
             lift in -1.0..1.0f64,
-            bend in proptest::sample::select(vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3, -0.3, 1.2]),
+            bend in proptest::sample::select(
+                vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3, -0.3, 1.2]
+            ),
             exponent in -300i32..300,
         ) {
             let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
@@ -808,7 +809,10 @@ mod tests {
             let (got, want) = (key(tri[0], tri[1], tri[2]), score(tri[0], tri[1], tri[2]));
             proptest::prop_assert_eq!(got.is_some(), want.is_some(), "{:?}", tri);
             if let (Some(got), Some(want)) = (got, want) {
-                proptest::prop_assert!((score_of(got) - want).abs() <= 1e-9, "{:?}: key {} score {}", tri, got, want);
+                proptest::prop_assert!(
+                    (score_of(got) - want).abs() <= 1e-9,
+                    "{:?}: key {} score {}", tri, got, want
+                );
             }
         }
 

@@ -191,8 +191,8 @@ pub enum WedgeStep {
 
 /// The best way to cut the triangle (c, ws[a], vs[b]) into triangles each with a side along
 /// W or V and its third corner on the other, for every a, b (`ws`, `vs` by distance from
-/// c): the smallest angle's margin over 30° (the angle at c exempt when the corner, `alpha`
-/// degrees, is sharper than 30°), or −∞ when there is none.
+/// c): the smallest angle's margin over 30° as a key (`boxes::key_of`; the angle at c
+/// exempt when the corner, `alpha` degrees, is sharper than 30°), or −∞ when there is none.
 ///
 /// Only the cells (a, b) with b < `rows[a]` are computed (`rows` not increasing, at most
 /// `vs.len()`); the others stay −∞. A cell reads only cells below and left of it, so each
@@ -990,7 +990,9 @@ mod tests {
             p in (-1.0..1.0f64, -1.0..1.0f64),
             q in (-1.0..1.0f64, -1.0..1.0f64),
             lift in -3.0..3.0f64,
-            bend in proptest::sample::select(vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 0.3, -0.3, 1.2]),
+            bend in proptest::sample::select(
+                vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 0.3, -0.3, 1.2]
+            ),
             exponent in -300i32..300,
         ) {
             // c on the perpendicular to pq at p, turned by `bend` radians.
@@ -1003,7 +1005,10 @@ mod tests {
             if want == f64::NEG_INFINITY {
                 proptest::prop_assert_eq!(got, want);
             } else {
-                proptest::prop_assert!((score_of(got) - want).abs() <= 1e-9, "{:?}: key {} score {}", [c, p, q], got, want);
+                proptest::prop_assert!(
+                    (score_of(got) - want).abs() <= 1e-9,
+                    "{:?}: key {} score {}", [c, p, q], got, want
+                );
             }
         }
     }

@@ -572,8 +572,38 @@ pub fn ladder(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
+
+    /// Triangles (p, q, r), p and q in the square [−1, 1]², r on the perpendicular to pq at
+    /// q (up to `lift` times |pq| away) turned by a bend among `bends` (radians): a right
+    /// angle at q when the bend is 0 (rounded either way), near-right ones, and others, all
+    /// scaled by 2^e for e in [−300, 300).
+    pub(in super::super) fn bent_right_triangles(
+        lift: f64,
+        bends: Vec<f64>,
+    ) -> impl proptest::strategy::Strategy<Value = [Point; 3]> {
+        use proptest::strategy::Strategy;
+        let corner = (-1.0..1.0f64, -1.0..1.0f64);
+        (
+            corner.clone(),
+            corner,
+            -lift..lift,
+            proptest::sample::select(bends),
+            -300i32..300,
+        )
+            .prop_map(|(p, q, lift, bend, exponent)| {
+                let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
+                let (cos, sin) = (bend.cos(), bend.sin());
+                let n = [-d[1] * cos - d[0] * sin, d[0] * cos - d[1] * sin];
+                [
+                    [p.0, p.1],
+                    [q.0, q.1],
+                    [q.0 + lift * n[0], q.1 + lift * n[1]],
+                ]
+                .map(|x| [x[0] * scale, x[1] * scale])
+            })
+    }
 
     fn point(s: &Strip, front: &[Point], v: Vertex) -> Point {
         match v {
@@ -762,19 +792,8 @@ mod tests {
         /// triangles and near-right ones (where the two could part) among them.
         #[test]
         fn the_score_is_that_of_measuring_every_angle(
-            p in (-1.0..1.0f64, -1.0..1.0f64),
-            q in (-1.0..1.0f64, -1.0..1.0f64),
-            lift in -1.0..1.0f64,
-            bend in proptest::sample::select(vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3]),
-            exponent in -300i32..300,
+            tri in bent_right_triangles(1.0, vec![0.0, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3]),
         ) {
-            // Triangle (p, q, r) with r on the perpendicular to pq at q, turned by `bend`
-            // radians: a right angle at q when bend is 0.
-            let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
-            let (cos, sin) = (bend.cos(), bend.sin());
-            let n = [-d[1] * cos - d[0] * sin, d[0] * cos - d[1] * sin];
-            let tri = [[p.0, p.1], [q.0, q.1], [q.0 + lift * n[0], q.1 + lift * n[1]]]
-                .map(|x| [x[0] * scale, x[1] * scale]);
             let every = || -> Option<f64> {
                 if orient2d(tri[0], tri[1], tri[2]) <= 0.0 {
                     return None;
@@ -793,19 +812,11 @@ mod tests {
         /// right and near-right ones (where the excess over 90° decides) among them.
         #[test]
         fn a_key_is_the_score_without_an_arc_tangent(
-            p in (-1.0..1.0f64, -1.0..1.0f64),
-            q in (-1.0..1.0f64, -1.0..1.0f64),
-            lift in -1.0..1.0f64,
-            bend in proptest::sample::select(
-                vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3, -0.3, 1.2]
+            tri in bent_right_triangles(
+                1.0,
+                vec![0.0, 1e-17, -1e-17, 1e-9, -1e-9, 1e-6, 0.3, -0.3, 1.2],
             ),
-            exponent in -300i32..300,
         ) {
-            let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
-            let (cos, sin) = (bend.cos(), bend.sin());
-            let n = [-d[1] * cos - d[0] * sin, d[0] * cos - d[1] * sin];
-            let tri = [[p.0, p.1], [q.0, q.1], [q.0 + lift * n[0], q.1 + lift * n[1]]]
-                .map(|x| [x[0] * scale, x[1] * scale]);
             let (got, want) = (key(tri[0], tri[1], tri[2]), score(tri[0], tri[1], tri[2]));
             proptest::prop_assert_eq!(got.is_some(), want.is_some(), "{:?}", tri);
             if let (Some(got), Some(want)) = (got, want) {

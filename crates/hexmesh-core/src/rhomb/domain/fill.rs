@@ -978,6 +978,7 @@ fn fill_polygon(
 mod tests {
     use super::*;
     use crate::rhomb::domain::boxes::score_of;
+    use crate::rhomb::domain::boxes::tests::bent_right_triangles;
 
     proptest::proptest! {
         #![proptest_config(proptest::prelude::ProptestConfig::with_cases(1000))]
@@ -987,20 +988,11 @@ mod tests {
         /// with a right angle at p (rounded either way) or one turned a little past it.
         #[test]
         fn a_whole_corner_key_is_its_score_without_an_arc_tangent(
-            p in (-1.0..1.0f64, -1.0..1.0f64),
-            q in (-1.0..1.0f64, -1.0..1.0f64),
-            lift in -3.0..3.0f64,
-            bend in proptest::sample::select(
-                vec![0.0f64, 1e-17, -1e-17, 1e-9, -1e-9, 0.3, -0.3, 1.2]
-            ),
-            exponent in -300i32..300,
+            tri in bent_right_triangles(3.0, vec![0.0, 1e-17, -1e-17, 1e-9, -1e-9, 0.3, -0.3, 1.2]),
         ) {
-            // c on the perpendicular to pq at p, turned by `bend` radians.
-            let (d, scale) = ([q.0 - p.0, q.1 - p.1], 2f64.powi(exponent));
-            let (cos, sin) = (bend.cos(), bend.sin());
-            let n = [-d[1] * cos - d[0] * sin, d[0] * cos - d[1] * sin];
-            let [c, p, q] = [[p.0 + lift * n[0], p.1 + lift * n[1]], [p.0, p.1], [q.0, q.1]]
-                .map(|x| [x[0] * scale, x[1] * scale]);
+            // c on the perpendicular to pq at p (the strategy's right angle, at its second
+            // corner).
+            let [q, p, c] = tri;
             let (got, want) = (whole_corner_key(c, p, q), whole_corner(c, p, q));
             if want == f64::NEG_INFINITY {
                 proptest::prop_assert_eq!(got, want);

@@ -132,8 +132,6 @@ pub struct DomainSummary {
     pub interior_max_angle: Option<f64>,
     /// The most triangles in one mesh that passed.
     pub max_triangles: usize,
-    /// The slowest case (seconds, case number), every outcome counted.
-    pub slowest: Option<(f64, u64)>,
     /// Cases, refusals and failures per family, in the order of `FAMILIES`.
     pub families: Vec<FamilyCounts>,
     /// Seconds per family, in the order of `FAMILIES`: where a campaign's time goes.
@@ -153,9 +151,23 @@ pub struct FamilyTime {
 }
 
 impl DomainSummary {
+    /// The slowest case (seconds, case number), every outcome counted: the slowest of the
+    /// families' (the earlier case on a tie).
+    pub fn slowest(&self) -> Option<(f64, u64)> {
+        self.family_times
+            .iter()
+            .filter_map(|t| t.slowest)
+            .reduce(|a, b| {
+                if b.0 > a.0 || (b.0 == a.0 && b.1 < a.1) {
+                    b
+                } else {
+                    a
+                }
+            })
+    }
+
     /// The summary with its times cleared: what is the same for any number of jobs.
     pub fn without_times(mut self) -> Self {
-        self.slowest = None;
         for t in &mut self.family_times {
             *t = FamilyTime::default();
         }
@@ -254,7 +266,7 @@ pub fn domain_campaign(
 ///
 /// `jobs` cases are meshed side by side (at least one), each on one thread of the mesher's
 /// when there are several: the summary is folded in case order, so it is the same for any
-/// number of jobs but for the times (`slowest`).
+/// number of jobs but for the times (`family_times`).
 pub fn domain_campaign_with(
     m: &dyn Mesher,
     cases: u64,
@@ -297,7 +309,6 @@ pub fn domain_campaign_with(
         interior_min_angle: None,
         interior_max_angle: None,
         max_triangles: 0,
-        slowest: None,
         families: FAMILIES
             .iter()
             .map(|&family| FamilyCounts {
@@ -393,9 +404,6 @@ fn fold_case(
     summary.families[fam].cases += 1;
     if generated.redraws == MAX_REDRAWS {
         summary.fallbacks += 1;
-    }
-    if summary.slowest.is_none_or(|(s, _)| secs > s) {
-        summary.slowest = Some((secs, case));
     }
     let time = &mut summary.family_times[fam];
     time.seconds += secs;
@@ -629,7 +637,7 @@ impl fmt::Display for DomainSummary {
                 degrees(Some(kept))
             )?;
         }
-        if let Some((secs, case)) = self.slowest {
+        if let Some((secs, case)) = self.slowest() {
             writeln!(f, "slowest case: {case} ({secs:.3} s)")?;
         }
         if self.fallbacks > 0 {

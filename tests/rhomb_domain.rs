@@ -302,6 +302,37 @@ fn holes_whose_even_band_is_over_25_times_the_graded_one_are_meshed_on_the_grade
 }
 
 #[test]
+fn a_thin_slit_whose_even_band_passes_half_the_vertex_budget_is_meshed_on_the_graded_band() {
+    // Case 109 of `hexmesh fuzz --domains --mesher rhomb` (seed 2): a notch 3e-3 wide. Its
+    // even band (450,796 leaves, 9.8 times the graded band's) meshed 656,812 vertices, past
+    // the campaign's 500,000. Under that budget the even band is now kept to half of it.
+    let path = "tests/fixtures/rhomb-domain/fuzz-seed2-case109-thin-slit.poly";
+    let input = hexmesh::io::read_input(std::path::Path::new(path)).unwrap();
+    let events = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let progress = {
+        let events = std::sync::Arc::clone(&events);
+        hexmesh::progress::Progress::new(move |e| events.lock().unwrap().push(e.phase))
+    };
+    let params = Params::default()
+        .with_budget(hexmesh::fuzz_domains::case_budget())
+        .with_progress(progress);
+    let run = Rhomb.mesh(&input, &params).unwrap();
+    let bounds = hexmesh::registry::bounds("rhomb").unwrap();
+    let verdict = hexmesh::quality::verdict(&run.mesh, Some(&input), Some(&bounds));
+    assert!(verdict.passed(), "{verdict}");
+    assert!(
+        run.mesh.vertices.len() < 100_000,
+        "{}",
+        run.mesh.vertices.len()
+    );
+    let events = events.lock().unwrap();
+    assert!(
+        events.contains(&"graded band along the boundary"),
+        "{events:?}"
+    );
+}
+
+#[test]
 fn a_domain_mesh_is_the_same_bytes_on_one_two_and_three_threads() {
     // The ladder's pieces are solved over the threads (each by its content alone): the
     // mesh may not depend on how many. The star and the holes go through erosions, so

@@ -54,6 +54,11 @@ impl Guard {
         }
     }
 
+    /// The most vertices the run's budget allows, if it sets one.
+    pub fn max_vertices(&self) -> Option<usize> {
+        self.budget.max_vertices
+    }
+
     pub fn check(&self, tree: &Tree) -> Result<(), Stop> {
         if let Some(max) = self.budget.max_steps {
             if tree.steps >= max {

@@ -20,9 +20,10 @@
 //!   made (that earlier rule) reached a graded tree that depended on the order of splits.
 //!
 //! `choose` evens the band unless that makes the tree more than `GRADED_ABOVE` times the
-//! graded one: the even band meshes more of the fuzz domains (where the size changes along
-//! a polygon's sides, the graded band's steps fail more often than the even band's finer
-//! lattice costs), the graded one the domains the even band cannot afford. A band even only
+//! graded one, or more than half the vertices a budget allows (`even_cap`): the even band
+//! meshes more of the fuzz domains (where the size changes along a polygon's sides, the
+//! graded band's steps fail more often than the even band's finer lattice costs), the
+//! graded one the domains the even band cannot afford. A band even only
 //! near the input corners and points (within 3 + 1.5 / sin(α/2) leaf sides of a corner of
 //! angle α) and graded elsewhere met 71 of the first 100 fuzz domains, against the even
 //! band's 88 (METHODOLOGY, 2026-12-07).
@@ -57,8 +58,9 @@ const GRADED_ABOVE: usize = 25;
 
 /// Makes the band along the boundary of `tree` (a fresh quad-tree of the domain; `again`
 /// builds another) even, or graded where the even one would exceed `GRADED_ABOVE` times the
-/// graded one's leaves, and says which. The even tree is built beside the graded one, and
-/// given up as soon as it passes that size (or a budget or the lattice's depth stops it).
+/// graded one's leaves or half the budget's vertices (`even_cap`), and says which. The even
+/// tree is built beside the graded one, and given up as soon as it passes that size (or a
+/// budget or the lattice's depth stops it).
 pub fn choose(
     tree: &mut Tree,
     again: impl FnOnce() -> Result<Tree, Stop>,
@@ -67,7 +69,7 @@ pub fn choose(
     guard: &Guard,
 ) -> Result<Band, Stop> {
     make(tree, frame, segments, Band::Graded, None, guard)?;
-    let cap = GRADED_ABOVE.saturating_mul(tree.leaf_count());
+    let cap = even_cap(tree.leaf_count(), guard.max_vertices());
     let mut even = again()?;
     match make(&mut even, frame, segments, Band::Even, Some(cap), guard) {
         Ok(true) => {
@@ -76,6 +78,19 @@ pub fn choose(
         }
         Ok(false) | Err(_) => Ok(Band::Graded),
     }
+}
+
+/// The most leaves an even band may have beside a graded band of `graded` leaves, under a
+/// budget of `max_vertices`: `GRADED_ABOVE` times the graded band, and at most half the
+/// budget: a mesh has about as many vertices as its tree has leaves, and the fills may make
+/// the tree finer still (`finer`, `fill::Stuck::Finer`), so an even band past half the
+/// budget leaves it no room. Case 109 of seed 2 (a thin slit, 3e-3 wide) had an even band
+/// of 450,796 leaves, 9.8 times the graded one's 45,841; its fills took it to 905,590
+/// leaves and 656,812 vertices, past the campaign's 500,000, in 22 s. The graded band
+/// meshes it with 37,846 vertices in 4.4 s.
+fn even_cap(graded: usize, max_vertices: Option<usize>) -> usize {
+    let cap = GRADED_ABOVE.saturating_mul(graded);
+    max_vertices.map_or(cap, |max| cap.min(max / 2))
 }
 
 /// Splits leaves until the band along the boundary is `band`; with `cap`, stops (returning
@@ -279,6 +294,33 @@ mod tests {
         let segments = cut::Segments::new(&domain);
         assert!(make(&mut tree, &frame, &segments, band, None, &guard).unwrap());
         (tree, frame, segments)
+    }
+
+    #[test]
+    fn an_even_band_past_half_the_vertex_budget_is_not_chosen() {
+        let input = cut_rectangle(0.05);
+        let graded = banded(&input, Band::Graded).0.leaf_count();
+        let even = banded(&input, Band::Even).0.leaf_count();
+        assert!(
+            even > graded && even <= GRADED_ABOVE * graded,
+            "{even} {graded}"
+        );
+        let (domain, classes) = read(&input).unwrap();
+        let chosen = |max_vertices: usize| {
+            let guard = Guard::new(Budget {
+                max_vertices: Some(max_vertices),
+                ..Budget::default()
+            });
+            let (mut tree, frame) = quad_tree(&domain, &classes, &guard).unwrap();
+            let fresh = || quad_tree(&domain, &classes, &guard).map(|(t, _)| t);
+            let segments = cut::Segments::new(&domain);
+            let band = choose(&mut tree, fresh, &frame, &segments, &guard).unwrap();
+            let leaves = if band == Band::Even { even } else { graded };
+            assert_eq!(tree.leaf_count(), leaves, "{max_vertices}");
+            band
+        };
+        assert_eq!(chosen(2 * even), Band::Even);
+        assert_eq!(chosen(2 * even - 2), Band::Graded);
     }
 
     #[test]

@@ -5,6 +5,7 @@
 //! (`Mesher::promise`: Sec. 4.3 for `hex-simple`, Sec. 6 for `hex`). Failing cases are
 //! written out as Triangle .node files when the campaign is given a directory for them.
 
+use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use rand::RngExt;
@@ -22,6 +23,8 @@ use crate::quality;
 pub struct FuzzSummary {
     pub mesher: String,
     pub seed: u64,
+    /// The first case's number (0 unless the campaign was asked to start later).
+    pub first: u64,
     pub cases: u64,
     /// Cases refused as too close for f64 at their coordinates (`InputError::Rounding`,
     /// `NearBoundary` or `Range`).
@@ -123,13 +126,15 @@ pub const FAMILIES: [&str; 10] = [
     "projected",
 ];
 
-/// Runs `cases` random cases through the mesher `mesher` (any registered name, or
-/// `hex-simple`, or `hex-tiled`: `hex` with tiles of 16 points), seeded by `seed`; `progress` is called after each case with the number done.
+/// Runs the random cases numbered `cases` (`0..n` is a campaign of n, `k..k + 1` its case k
+/// alone) through the mesher `mesher` (any registered name, or `hex-simple`, or `hex-tiled`:
+/// `hex` with tiles of 16 points), seeded by `seed`; `progress` is called after each case
+/// with the number done.
 /// The input of each failing case is written into `out` (`write_failure`) when it is given;
 /// without it nothing is written and the failures are only reported.
 pub fn fuzz_campaign(
     mesher: &str,
-    cases: u64,
+    cases: Range<u64>,
     seed: u64,
     out: Option<&Path>,
     progress: impl FnMut(u64),
@@ -179,7 +184,7 @@ impl Figures {
 /// sets mesh fast enough for a test of a thousand cases.
 pub fn fuzz_campaign_sized(
     mesher: &str,
-    cases: u64,
+    cases: Range<u64>,
     seed: u64,
     max_points: usize,
     out: Option<&Path>,
@@ -188,6 +193,7 @@ pub fn fuzz_campaign_sized(
     let mut summary = FuzzSummary {
         mesher: mesher.to_string(),
         seed,
+        first: cases.start,
         cases: 0,
         refused: 0,
         rounding_used: [0; ROUNDING_BINS.len()],
@@ -232,7 +238,8 @@ pub fn fuzz_campaign_sized(
     };
     // What the mesher promises for the parameters of the campaign (`verify --bounds NAME`).
     let promised = Some(m.promise(&Params::default()));
-    for case in 0..cases {
+    let first = cases.start;
+    for case in cases {
         let (family, input) = generate_sized_case(seed, case, max_points);
         let fam = FAMILIES.iter().position(|&f| f == family).unwrap_or(0);
         summary.families[fam].cases += 1;
@@ -302,7 +309,7 @@ pub fn fuzz_campaign_sized(
                 out.map(|dir| move || write_failure(dir, mesher, seed, case, family, &input)),
             );
         }
-        progress(case + 1);
+        progress(case + 1 - first);
     }
     summary
 }

@@ -5,8 +5,8 @@
 use std::path::{Path, PathBuf};
 
 use hexmesh::fuzz_domains::{
-    domain_campaign, domain_campaign_with, generate_case, generate_family_case, write_failure,
-    Runner, FAMILIES, MAX_POINTS, MAX_REDRAWS, SHARP_MAX_DEG, SHARP_MIN_DEG,
+    domain_campaign, domain_campaign_with, error_kind, generate_case, generate_family_case,
+    write_failure, Runner, FAMILIES, MAX_POINTS, MAX_REDRAWS, SHARP_MAX_DEG, SHARP_MIN_DEG,
 };
 use hexmesh::{Error, InputError, MeshRun, Mesher, Params, Point, Pslg};
 
@@ -375,7 +375,7 @@ fn the_same_seed_gives_the_same_poly_bytes_and_another_seed_other_bytes() {
 fn saalfeld_meshes_a_campaign_of_every_family_with_no_failure() {
     let s = domain_campaign(
         "saalfeld",
-        160,
+        0..160,
         20_261_123,
         None,
         &Runner::InProcess,
@@ -400,8 +400,16 @@ fn hexmesh_exe() -> Runner {
 /// for it).
 #[test]
 fn triangle_keeps_its_30_degrees_on_every_domain_without_a_corner_sharper_than_30_degrees() {
-    let s = domain_campaign("triangle", 100, 20_261_123, None, &hexmesh_exe(), 1, |_| {})
-        .expect("triangle keeps segments");
+    let s = domain_campaign(
+        "triangle",
+        0..100,
+        20_261_123,
+        None,
+        &hexmesh_exe(),
+        1,
+        |_| {},
+    )
+    .expect("triangle keeps segments");
     assert_eq!(s.cases, 100, "{s}");
     assert_eq!(s.refused, 0, "{s}");
     for &(case, family, _) in &s.failed {
@@ -418,7 +426,7 @@ fn triangle_keeps_its_30_degrees_on_every_domain_without_a_corner_sharper_than_3
 
 #[test]
 fn a_mesher_that_does_not_keep_segments_is_a_usage_error_naming_those_that_do() {
-    match domain_campaign("hex-simple", 1, 1, None, &Runner::InProcess, 1, |_| {}) {
+    match domain_campaign("hex-simple", 0..1, 1, None, &Runner::InProcess, 1, |_| {}) {
         Err(Error::Usage(m)) => {
             assert!(m.starts_with("hex-simple does not keep segments"), "{m}");
             let (_, those) = m.split_once("the meshers that do:").expect("a list");
@@ -469,6 +477,16 @@ impl Mesher for Faulty {
                 run.complete = false;
                 run.stop_reason = Some(hexmesh::StopReason::Vertices(1));
             }
+            // Errors whose particulars differ from case to case.
+            "errs" => {
+                return Err(Error::mesher(
+                    "saalfeld",
+                    format!(
+                        "no triangulation in [30°, 90°] joins {} points",
+                        input.points.len()
+                    ),
+                ))
+            }
             _ => panic!("a fault of the test"),
         }
         Ok(run)
@@ -480,7 +498,7 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
     let dir = temp_dir("out");
     let s = domain_campaign_with(
         &Faulty("drops a triangle"),
-        9,
+        0..9,
         5,
         Some(&dir),
         &Runner::InProcess,
@@ -506,7 +524,7 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
     // Without a directory nothing is written.
     let s = domain_campaign_with(
         &Faulty("drops a triangle"),
-        2,
+        0..2,
         5,
         None,
         &Runner::InProcess,
@@ -521,7 +539,7 @@ fn a_failing_case_is_written_into_out_and_reads_back_as_the_same_domain() {
 fn refusals_are_counted_by_reason_and_budget_stops_and_panics_fail() {
     let s = domain_campaign_with(
         &Faulty("refuses"),
-        8,
+        0..8,
         1,
         None,
         &Runner::InProcess,
@@ -538,7 +556,7 @@ fn refusals_are_counted_by_reason_and_budget_stops_and_panics_fail() {
     assert_eq!(s.refusals["NearBoundary"].count, 8);
     assert!(s.families.iter().all(|f| f.refused == 1), "{s}");
     for fault in ["stops early", "panics"] {
-        let s = domain_campaign_with(&Faulty(fault), 3, 1, None, &Runner::InProcess, 1, |_| {})
+        let s = domain_campaign_with(&Faulty(fault), 0..3, 1, None, &Runner::InProcess, 1, |_| {})
             .expect("runs");
         assert_eq!((s.failures, s.refused), (3, 0), "{fault}: {s}");
         let reason = if fault == "panics" {
@@ -612,7 +630,7 @@ fn the_command_line_runs_a_domain_campaign_and_refuses_a_mesher_without_segments
 fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_times() {
     let saalfeld = |jobs: usize| {
         let mut done = Vec::new();
-        let s = domain_campaign("saalfeld", 40, 7, None, &Runner::InProcess, jobs, |d| {
+        let s = domain_campaign("saalfeld", 0..40, 7, None, &Runner::InProcess, jobs, |d| {
             done.push(d)
         })
         .expect("saalfeld keeps segments");
@@ -641,7 +659,7 @@ fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_t
     let faulty = |jobs: usize| {
         domain_campaign_with(
             &Faulty("drops a triangle"),
-            9,
+            0..9,
             5,
             None,
             &Runner::InProcess,
@@ -654,4 +672,117 @@ fn a_campaign_run_several_cases_at_a_time_sums_up_as_one_at_a_time_but_for_the_t
     let one = faulty(1);
     assert_eq!(one.failures, 9, "{one}");
     assert_eq!(faulty(4), one);
+}
+
+#[test]
+fn mesher_errors_are_counted_by_their_kind_not_their_particulars() {
+    let s = domain_campaign_with(
+        &Faulty("errs"),
+        0..8,
+        1,
+        None,
+        &Runner::InProcess,
+        1,
+        |_| {},
+    )
+    .expect("runs");
+    assert_eq!(s.failures, 8, "{s}");
+    assert_eq!(
+        s.failure_reasons.keys().collect::<Vec<_>>(),
+        ["mesher error: no triangulation"],
+        "{s}"
+    );
+    assert_eq!(s.failure_reasons["mesher error: no triangulation"].count, 8);
+    for (message, kind) in [
+        (
+            "stopped: time budget of 20s reached",
+            "stopped: time budget",
+        ),
+        (
+            "stopped: vertex budget of 500000 reached",
+            "stopped: vertex budget",
+        ),
+        (
+            "the domain mesh failed its own check: vertex 19 at (0.1, 0.2) belongs to no triangle",
+            "the domain mesh failed its own check",
+        ),
+        (
+            "the single point at (1, 2) is not joined to the lattice",
+            "the single point",
+        ),
+        ("C++ exception", "C++ exception"),
+        ("", ""),
+    ] {
+        assert_eq!(error_kind(message), kind, "{message}");
+    }
+}
+
+#[test]
+fn a_campaign_started_at_a_later_case_meshes_the_same_cases_as_the_whole_one() {
+    let run = |cases: std::ops::Range<u64>| {
+        domain_campaign_with(
+            &Faulty("drops a triangle"),
+            cases,
+            5,
+            None,
+            &Runner::InProcess,
+            1,
+            |_| {},
+        )
+        .expect("runs")
+    };
+    let whole = run(0..9);
+    let later = run(6..9);
+    assert_eq!(
+        (later.first, later.cases, later.failures),
+        (6, 3, 3),
+        "{later}"
+    );
+    assert_eq!(later.failed[..], whole.failed[6..], "{later}");
+    assert!(
+        later
+            .to_string()
+            .starts_with("fuzz --domains saalfeld: 3 cases from case 6 (seed 5)"),
+        "{later}"
+    );
+    // Progress counts the cases done, from 1.
+    let mut done = Vec::new();
+    domain_campaign("saalfeld", 6..9, 5, None, &Runner::InProcess, 2, |d| {
+        done.push(d)
+    })
+    .expect("saalfeld keeps segments");
+    assert_eq!(done, [1, 2, 3]);
+}
+
+#[test]
+fn the_command_line_reruns_one_case_and_refuses_a_range_past_the_last_number() {
+    let (code, text) = hexmesh_cli(&[
+        "fuzz",
+        "--domains",
+        "--mesher",
+        "saalfeld",
+        "--seed",
+        "7",
+        "--first",
+        "12",
+        "--cases",
+        "1",
+    ]);
+    assert_eq!(code, Some(0), "{text}");
+    assert!(
+        text.contains("fuzz --domains saalfeld: 1 cases from case 12 (seed 7), 1 passed"),
+        "{text}"
+    );
+    let (code, text) = hexmesh_cli(&[
+        "fuzz",
+        "--domains",
+        "--mesher",
+        "saalfeld",
+        "--first",
+        "18446744073709551615",
+        "--cases",
+        "2",
+    ]);
+    assert_eq!(code, Some(2), "{text}");
+    assert!(text.contains("runs past the last case number"), "{text}");
 }

@@ -109,6 +109,10 @@ struct FuzzArgs {
     /// Seed of the case generator: the same seed gives the same cases.
     #[arg(long, default_value_t = 20_261_123)]
     seed: u64,
+    /// The number of the first case: `--first N --cases 1` runs case N of the campaign of
+    /// that seed alone, as the whole campaign meshes and checks it.
+    #[arg(long, default_value_t = 0, value_name = "N")]
+    first: u64,
     /// Directory the input of each failing case is written into, as a Triangle .node file
     /// (a .poly file with --domains; created if missing; at most a hundred files). Without it no files are written: the
     /// failing cases are only reported, and `--seed` with the case number reproduces them.
@@ -791,18 +795,28 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
                 .into(),
         ));
     }
+    let cases = case_range(args)?;
     let bar = fuzz_progress(args.cases)?;
     let summary = crate::fuzz::fuzz_campaign(
         &args.mesher,
-        args.cases,
+        cases,
         args.seed,
         args.out.as_deref(),
         |done| bar.set(done),
     );
     bar.finish();
     println!(
-        "fuzz {}: {} cases (seed {}), {} refused as too close for f64 at their coordinates, {} failed",
-        summary.mesher, summary.cases, summary.seed, summary.refused, summary.failures
+        "fuzz {}: {} cases{} (seed {}), {} refused as too close for f64 at their coordinates, {} failed",
+        summary.mesher,
+        summary.cases,
+        if summary.first > 0 {
+            format!(" from case {}", summary.first)
+        } else {
+            String::new()
+        },
+        summary.seed,
+        summary.refused,
+        summary.failures
     );
     println!(
         "worst angles seen: min {:.9}°, max {:.9}°; largest mesh {} triangles",
@@ -877,6 +891,19 @@ impl FuzzProgress {
     }
 }
 
+/// The numbers of a campaign's cases: `--cases` of them from `--first`.
+fn case_range(args: &FuzzArgs) -> Result<std::ops::Range<u64>> {
+    match args.first.checked_add(args.cases) {
+        Some(end) => Ok(args.first..end),
+        None => Err(Error::Usage(format!(
+            "--first {} with --cases {} runs past the last case number ({})",
+            args.first,
+            args.cases,
+            u64::MAX
+        ))),
+    }
+}
+
 /// Refuses a campaign of no cases, and starts its progress display.
 fn fuzz_progress(cases: u64) -> Result<FuzzProgress> {
     use std::io::IsTerminal;
@@ -904,10 +931,11 @@ fn fuzz_progress(cases: u64) -> Result<FuzzProgress> {
 /// (Triangle, CGAL and hex each case in a child process).
 fn fuzz_domains(args: &FuzzArgs) -> Result<ExitCode> {
     let runner = crate::fuzz_domains::runner_for(&args.mesher)?;
+    let cases = case_range(args)?;
     let bar = fuzz_progress(args.cases)?;
     let summary = crate::fuzz_domains::domain_campaign(
         &args.mesher,
-        args.cases,
+        cases,
         args.seed,
         args.out.as_deref(),
         &runner,

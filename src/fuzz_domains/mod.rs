@@ -22,6 +22,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt;
+use std::ops::Range;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -109,6 +110,8 @@ pub struct Tally {
 pub struct DomainSummary {
     pub mesher: String,
     pub seed: u64,
+    /// The first case's number (0 unless the campaign was asked to start later).
+    pub first: u64,
     pub cases: u64,
     pub passed: u64,
     pub refused: u64,
@@ -185,7 +188,8 @@ enum Outcome {
 /// Why a case failed: a short key the summary counts failures by, and the whole message.
 struct Failure {
     /// "verdict: " and the checks that failed, "stopped early: budget" or "stopped early:
-    /// child timed out", "mesher error", "panic" or "verdict panic".
+    /// child timed out", "mesher error: " and its kind (`error_kind`), "panic" or "verdict
+    /// panic".
     reason: String,
     /// The first line tells what failed; a verdict's table follows.
     message: String,
@@ -243,14 +247,15 @@ pub fn refusal_reason(problem: &InputError) -> String {
         .to_string()
 }
 
-/// Runs `cases` generated domains through the mesher `mesher`, seeded by `seed`, each where
-/// `runner` says; `progress` is called after each case with the number done. The input of
+/// Runs the generated domains numbered `cases` (`0..10_000` is a whole campaign, `n..n + 1`
+/// case `n` of it alone) through the mesher `mesher`, seeded by `seed`, each where `runner`
+/// says; `progress` is called after each case with the number done. The input of
 /// each failing case is written into `out` (`write_failure`, up to a hundred) when it is
 /// given. Errors when the mesher is unknown or does not keep segments (a usage error that
 /// names the meshers that do).
 pub fn domain_campaign(
     mesher: &str,
-    cases: u64,
+    cases: Range<u64>,
     seed: u64,
     out: Option<&Path>,
     runner: &Runner,
@@ -269,7 +274,7 @@ pub fn domain_campaign(
 /// number of jobs but for the times (`family_times`).
 pub fn domain_campaign_with(
     m: &dyn Mesher,
-    cases: u64,
+    cases: Range<u64>,
     seed: u64,
     out: Option<&Path>,
     runner: &Runner,
@@ -285,6 +290,7 @@ pub fn domain_campaign_with(
         )));
     }
     let jobs = jobs.max(1);
+    let (first, end) = (cases.start, cases.end);
     let mut params = case_params(mesher).0.with_budget(case_budget());
     if jobs > 1 {
         params = params.with_threads(std::num::NonZeroUsize::MIN);
@@ -294,6 +300,7 @@ pub fn domain_campaign_with(
     let mut summary = DomainSummary {
         mesher: mesher.to_string(),
         seed,
+        first: cases.start,
         cases: 0,
         passed: 0,
         refused: 0,
@@ -338,15 +345,15 @@ pub fn domain_campaign_with(
     let mut fold = |meshed: Meshed| {
         let case = meshed.case;
         fold_case(&mut summary, meshed, out, mesher, seed);
-        progress(case + 1);
+        progress(case + 1 - first);
     };
     if jobs == 1 {
         // On the calling thread (its stack), as before there were jobs.
-        (0..cases).for_each(|case| fold(work(case)));
+        cases.for_each(|case| fold(work(case)));
     } else {
         // Each job takes the next case, meshes it and sends it back; the cases are folded
         // in order as they complete.
-        let next = std::sync::atomic::AtomicU64::new(0);
+        let next = std::sync::atomic::AtomicU64::new(first);
         let (send, done) = std::sync::mpsc::channel();
         std::thread::scope(|scope| {
             for _ in 0..jobs {
@@ -354,14 +361,14 @@ pub fn domain_campaign_with(
                 let (next, work) = (&next, &work);
                 scope.spawn(move || loop {
                     let case = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                    if case >= cases || send.send(work(case)).is_err() {
+                    if case >= end || send.send(work(case)).is_err() {
                         break;
                     }
                 });
             }
             drop(send);
             let mut waiting = BTreeMap::new();
-            let mut folded = 0;
+            let mut folded = first;
             for item in done {
                 waiting.insert(item.case, item);
                 while let Some(item) = waiting.remove(&folded) {
@@ -484,6 +491,32 @@ fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
         .unwrap_or_else(|| "a panic without a message".to_string())
 }
 
+/// The kind of a mesher's error message, which failures are counted by: its words up to
+/// the first that holds a figure or a bracket (where the particulars start) or through a
+/// colon after the first word, at most seven, without a closing "of", "at", "in", "near",
+/// "after" or colon. "stopped: time budget of 20s reached" is "stopped: time budget", "no
+/// triangulation in [30°, 90°] joins ..." is "no triangulation".
+pub fn error_kind(message: &str) -> String {
+    let mut words: Vec<&str> = Vec::new();
+    for w in message.split_whitespace().take(7) {
+        if w.contains(|c: char| c.is_ascii_digit() || "([{".contains(c)) {
+            break;
+        }
+        words.push(w);
+        if words.len() > 1 && w.ends_with(':') {
+            break;
+        }
+    }
+    while words
+        .last()
+        .is_some_and(|w| ["of", "at", "in", "near", "after"].contains(w))
+    {
+        words.pop();
+    }
+    let kind = words.join(" ");
+    kind.trim_end_matches(':').to_string()
+}
+
 fn run_case(
     mesher: &dyn Mesher,
     input: &Pslg,
@@ -512,7 +545,13 @@ fn run_case(
             let message = problem.describe(0);
             return Outcome::Refused(problem, message);
         }
-        Err(e) => return failed("mesher error", e.to_string()),
+        Err(e) => {
+            let key = match &e {
+                Error::Mesher { message, .. } => format!("mesher error: {}", error_kind(message)),
+                _ => "mesher error".to_string(),
+            };
+            return failed(&key, e.to_string());
+        }
     };
     if !run.complete {
         let why = run
@@ -593,8 +632,18 @@ impl fmt::Display for DomainSummary {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(
             f,
-            "fuzz --domains {}: {} cases (seed {}), {} passed, {} refused, {} failed",
-            self.mesher, self.cases, self.seed, self.passed, self.refused, self.failures
+            "fuzz --domains {}: {} cases{} (seed {}), {} passed, {} refused, {} failed",
+            self.mesher,
+            self.cases,
+            if self.first > 0 {
+                format!(" from case {}", self.first)
+            } else {
+                String::new()
+            },
+            self.seed,
+            self.passed,
+            self.refused,
+            self.failures
         )?;
         if self.refusals.is_empty() {
             writeln!(f, "refusals by reason: none")?;

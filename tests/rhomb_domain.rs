@@ -368,3 +368,48 @@ fn fixture(file: &str) -> hexmesh::Pslg {
     let path = format!("tests/fixtures/rhomb-domain/{file}");
     hexmesh::io::read_input(std::path::Path::new(&path)).unwrap()
 }
+
+#[test]
+fn single_points_the_cut_left_out_or_on_an_island_are_joined_by_a_finer_band_and_meshed() {
+    // Cases of the domain campaign (seed 20261123) whose single point lay 0.002 to 0.01 of
+    // the domain's size from a segment, inside the band the cut deletes: the point was left
+    // in no kept triangle, or on an island of kept lattice that the islands' erosions cut
+    // out ring by ring, and the mesh failed its own check (a vertex in no triangle). The
+    // band beside the point, or beside the island, is made finer until the point's lattice
+    // joins the rest (`band::around_single`, `band::around_island`).
+    for file in [
+        "fuzz-seed20261123-case4892-interior-points.poly",
+        "fuzz-seed20261123-case5228-interior-points.poly",
+        "fuzz-seed20261123-case9759-large-coordinates.poly",
+    ] {
+        let events = meshed_fixture_events(&format!("tests/fixtures/rhomb-domain/{file}"));
+        assert!(
+            events
+                .iter()
+                .any(|e| e.0.starts_with("band made finer at a single point")
+                    || e.0
+                        .starts_with("band made finer beside an island holding a single point")),
+            "{file}: {events:?}"
+        );
+    }
+}
+
+#[test]
+fn a_wedge_table_past_its_cells_is_an_error_naming_the_corner_not_an_exhausted_memory() {
+    // Case 4076 of the domain campaign (seed 20261123): a single point 0.0015 from a segment
+    // in a narrow spike. Joining it to the lattice makes the band along the spike so fine
+    // that the wedge of the spike's corner would be 122 million cells: the child meshing it
+    // was killed at the machine's 24 GB. It is an error now, before the table is made.
+    let input = fixture("fuzz-seed20261123-case4076-interior-points.poly");
+    match Rhomb.mesh(&input, &Params::default()) {
+        Err(e) => {
+            let m = e.to_string();
+            assert!(
+                m.contains("the sharp corner at (-0.33883042762288307, 0.9983677167583296)")
+                    && m.contains("needs a wedge table of"),
+                "{m}"
+            );
+        }
+        Ok(run) => panic!("meshed: {} triangles", run.mesh.triangles.len()),
+    }
+}

@@ -33,6 +33,11 @@
 //! moves along the boundary, a coarse leaf at a time, to where the ladder closes. Of the
 //! domain campaign's first 200 cases, it meshes 11 that failed (9 of the 10 short-long
 //! failures, one with large coordinates, one with holes; METHODOLOGY, 2026-12-07).
+//!
+//! Where the cut leaves a single point out of the kept lattice, or on an island of it,
+//! `around_single` and `around_island` make the band finer beside the point or the island,
+//! so that the point's lattice joins the rest instead of being cut or eroded out of the
+//! mesh.
 
 use super::cut;
 use crate::rhomb::lattice::{self, Cell, Frame, AROUND};
@@ -257,6 +262,123 @@ pub fn finer_near(
         tree.split(c)?;
     }
     make(tree, frame, segments, Band::Graded, None, guard).map(|_| true)
+}
+
+/// Departure (ours): where the cut left single point `p` in no kept triangle, or on an
+/// island of kept lattice that no front reaches (`mod.rs`, `lost_singles`), the leaf
+/// holding it and the leaves the boundary touches within twice its distance `d` to the
+/// boundary are split where their side exceeds `d / SINGLE_SIDES`, and the band is made
+/// again; called again while the point is lost, this makes the band beside the point fine
+/// enough for the kept lattice to reach it. The corner condition (step 3) keeps the other
+/// input points out of a single point's window, not the segments: points 0.0015 to 0.01
+/// from a segment, in a band of sides near 0.02 (fuzz cases 4076, 4892, 5228 and 9759 of
+/// seed 20261123), were cut out of the mesh; splitting the point's own leaf alone left it
+/// on an island inside the gap the fill spans, which the fill covered a second time.
+pub fn around_single(
+    tree: &mut Tree,
+    frame: &Frame,
+    segments: &cut::Segments,
+    band: Band,
+    p: crate::geom::Point,
+    guard: &Guard,
+) -> Result<bool, Stop> {
+    let d = segments.distance(p);
+    let target = d / SINGLE_SIDES;
+    let here = tree.leaf_at(frame.locate(p));
+    let mut split = Vec::new();
+    if leaf_side(frame, here) > target {
+        split.push(here);
+    }
+    touched_near(tree, frame, segments, p, 2.0 * d, target, &mut split);
+    split_all(tree, frame, segments, band, split, guard)
+}
+
+/// A single point's leaf and the band beside it are split by `around_single` until their
+/// side is at most the point's distance to the boundary over this.
+const SINGLE_SIDES: f64 = 3.0;
+
+/// Departure (ours): where an island of kept lattice holds a single point (a point in a
+/// spike or slot of the domain, whose kept lattice is cut off from the rest where the
+/// domain narrows: fuzz case 4076 of seed 20261123; or a point whose finer rhombs
+/// `around_single` made end before the band's coarse ones: case 5228), the island is not
+/// eroded, which would cut the point out: the leaves the boundary touches within
+/// `ISLAND_REACH` leaf sides of each island corner and coarser than that corner's leaf are
+/// split, and the band made again, so that the island reaches further at each round until
+/// it joins the rest. False where nothing was split.
+pub fn around_island(
+    tree: &mut Tree,
+    frame: &Frame,
+    segments: &cut::Segments,
+    band: Band,
+    corners: &[crate::geom::Point],
+    guard: &Guard,
+) -> Result<bool, Stop> {
+    let mut split = Vec::new();
+    for &p in corners {
+        let s = leaf_side(frame, tree.leaf_at(frame.locate(p)));
+        touched_near(tree, frame, segments, p, ISLAND_REACH * s, s, &mut split);
+    }
+    split_all(tree, frame, segments, band, split, guard)
+}
+
+/// How far from an island corner, in sides of its leaf, `around_island` looks.
+const ISLAND_REACH: f64 = 4.0;
+
+/// The side of leaf `c`.
+fn leaf_side(frame: &Frame, c: Cell) -> f64 {
+    let corner = |di: i64| frame.point(lattice::key(c.level, c.i + di, c.j));
+    crate::geom::dist(corner(0), corner(1))
+}
+
+/// Adds to `out` the leaves the boundary touches over the disc of radius `r` about `p`
+/// whose side exceeds `side` (looked up on a grid of spacing `side / 2`).
+fn touched_near(
+    tree: &Tree,
+    frame: &Frame,
+    segments: &cut::Segments,
+    p: crate::geom::Point,
+    r: f64,
+    side: f64,
+    out: &mut Vec<Cell>,
+) {
+    let step = 0.5 * side;
+    let n = (r / step).ceil() as i64;
+    for a in -n..=n {
+        for b in -n..=n {
+            let (x, y) = (a as f64 * step, b as f64 * step);
+            if x * x + y * y > r * r {
+                continue;
+            }
+            let c = tree.leaf_at(frame.locate([p[0] + x, p[1] + y]));
+            if leaf_side(frame, c) > side && touches_boundary(frame, segments, c) {
+                out.push(c);
+            }
+        }
+    }
+}
+
+/// Splits the leaves `split` (each once) and makes the band again; false where there were
+/// none.
+fn split_all(
+    tree: &mut Tree,
+    frame: &Frame,
+    segments: &cut::Segments,
+    band: Band,
+    mut split: Vec<Cell>,
+    guard: &Guard,
+) -> Result<bool, Stop> {
+    split.sort_unstable();
+    split.dedup();
+    if split.is_empty() {
+        return Ok(false);
+    }
+    for c in split {
+        guard.check(tree)?;
+        if tree.is_leaf(c) {
+            tree.split(c)?;
+        }
+    }
+    make(tree, frame, segments, band, None, guard).map(|_| true)
 }
 
 /// How far from a failing corner, in sides of its leaf, `finer_near` looks.

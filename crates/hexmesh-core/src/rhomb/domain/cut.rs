@@ -105,6 +105,24 @@ impl Segments {
         out
     }
 
+    /// The distance from `p` to the nearest segment (every segment looked at: for the
+    /// few points that ask).
+    pub fn distance(&self, p: Point) -> f64 {
+        self.ends
+            .iter()
+            .map(|&[a, b]| {
+                let (ab, ap) = ([b[0] - a[0], b[1] - a[1]], [p[0] - a[0], p[1] - a[1]]);
+                let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+                let t = if len2 > 0.0 {
+                    ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
+                } else {
+                    0.0
+                };
+                dist(p, [a[0] + t * ab[0], a[1] + t * ab[1]])
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+
     /// The segments whose cells meet the box [x0, y0, x1, y1], each once, ascending.
     pub fn near(&self, b: [f64; 4]) -> Vec<u32> {
         let mut out: Vec<u32> = self

@@ -77,6 +77,13 @@ impl Memo {
     }
 }
 
+/// The most cells a sharp corner's wedge table may have (W by V points, each cell 24
+/// bytes): a fill that needs more fails (`Stuck::Wedge`) instead of taking the machine's
+/// memory. A single point in a narrow spike (fuzz case 4076 of seed 20261123), whose band
+/// `band::around_island` made finer along the spike, asked for a table of 122 million
+/// cells and was killed at the machine's 24 GB.
+pub const WEDGE_CELLS: usize = 1 << 25;
+
 /// A wedge's table (`wedge`): the best cut of (c, ws[a], vs[b]) for every a, b.
 pub type WedgeTable = Vec<Vec<(f64, WedgeStep)>>;
 
@@ -91,6 +98,9 @@ pub enum Stuck {
     /// deleted triangles; these are their corners, every polygon's at once, and the caller
     /// erodes them all.
     Island(Vec<u32>),
+    /// The wedge table of the sharp corner at this point would have this many cells, more
+    /// than `WEDGE_CELLS`.
+    Wedge(Point, usize),
     /// The fronts do not pair with the polygons one to one: the kept lattice does not
     /// separate two polygons (one front faces both), or a polygon faces none. The tree must
     /// be finer at these points.
@@ -103,7 +113,7 @@ impl Stuck {
         match self {
             Stuck::At(v, _) => Some(*v),
             Stuck::Island(corners) => corners.first().copied(),
-            Stuck::Finer(_) => None,
+            Stuck::Finer(_) | Stuck::Wedge(..) => None,
         }
     }
 }
@@ -329,6 +339,7 @@ pub fn fill(
     // Each front goes with the polygon its corners are nearest to (by majority).
     let mut front_of: Vec<Vec<usize>> = vec![Vec::new(); domain.polygons.len()];
     let mut finer = Vec::new();
+    let mut stranded = Vec::new();
     for (f, l) in cut.loops.iter().enumerate() {
         let mut votes = vec![0usize; domain.polygons.len()];
         let nearest: Vec<Option<usize>> = l
@@ -339,6 +350,12 @@ pub fn fill(
             votes[*k] += 1;
         }
         let best = (0..votes.len()).max_by_key(|&k| (votes[k], std::cmp::Reverse(k)));
+        if votes.iter().all(|&n| n == 0) {
+            // No side within reach of any corner: a patch of fine lattice (a single
+            // point's, `band::around_single`) inside a gap the fill spans, which its
+            // triangles would cover a second time.
+            stranded.extend(l.iter().copied());
+        }
         if let Some(k) = best.filter(|&k| votes[k] > 0) {
             front_of[k].push(f);
             // Corners of this front nearest another polygon: the lattice between the two
@@ -357,7 +374,7 @@ pub fn fill(
     // deleted triangles (a kept triangle cut off, or a hole in the kept lattice); eroding
     // their corners joins them to the gap. Every polygon's islands are named at once, so
     // that one erosion round takes them all.
-    let islands: Vec<u32> = front_of
+    let mut islands: Vec<u32> = front_of
         .iter()
         .filter(|fronts| fronts.len() > 1)
         .flat_map(|fronts| {
@@ -372,6 +389,7 @@ pub fn fill(
                 .flat_map(|&f| cut.loops[f].iter().copied())
         })
         .collect();
+    islands.extend(stranded);
     if !islands.is_empty() {
         return Err(Stuck::Island(islands));
     }
@@ -684,6 +702,11 @@ fn fill_polygon(
         }
         for a in (1..rows.len()).rev() {
             rows[a - 1] = rows[a - 1].max(rows[a]);
+        }
+        // `wedge` makes the whole table, W by V points, though it computes only `rows`.
+        let cells = ws.len().saturating_mul(vs.len());
+        if cells > WEDGE_CELLS {
+            return Err(Stuck::Wedge(ring[j], cells));
         }
         let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
         let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();

@@ -77,13 +77,6 @@ impl Memo {
     }
 }
 
-/// The most cells a sharp corner's wedge table may have (W by V points, each cell 24
-/// bytes): a fill that needs more fails (`Stuck::Wedge`) instead of taking the machine's
-/// memory. A single point in a narrow spike (fuzz case 4076 of seed 20261123), whose band
-/// `band::around_island` made finer along the spike, asked for a table of 122 million
-/// cells and was killed at the machine's 24 GB.
-pub const WEDGE_CELLS: usize = 1 << 25;
-
 /// A wedge's table (`wedge`): the best cut of (c, ws[a], vs[b]) for every a, b.
 pub type WedgeTable = Vec<Vec<(f64, WedgeStep)>>;
 
@@ -98,9 +91,6 @@ pub enum Stuck {
     /// deleted triangles; these are their corners, every polygon's at once, and the caller
     /// erodes them all.
     Island(Vec<u32>),
-    /// The wedge table of the sharp corner at this point would have this many cells, more
-    /// than `WEDGE_CELLS`.
-    Wedge(Point, usize),
     /// The fronts do not pair with the polygons one to one: the kept lattice does not
     /// separate two polygons (one front faces both), or a polygon faces none. The tree must
     /// be finer at these points.
@@ -113,7 +103,7 @@ impl Stuck {
         match self {
             Stuck::At(v, _) => Some(*v),
             Stuck::Island(corners) => corners.first().copied(),
-            Stuck::Finer(_) | Stuck::Wedge(..) => None,
+            Stuck::Finer(_) => None,
         }
     }
 }
@@ -204,9 +194,12 @@ pub enum WedgeStep {
 /// c): the smallest angle's margin over 30° as a key (`boxes::key_of`; the angle at c
 /// exempt when the corner, `alpha` degrees, is sharper than 30°), or −∞ when there is none.
 ///
-/// Only the cells (a, b) with b < `rows[a]` are computed (`rows` not increasing, at most
-/// `vs.len()`); the others stay −∞. A cell reads only cells below and left of it, so each
-/// computed cell is what the whole table would hold.
+/// Only the cells (a, b) with b < `rows[a]` are computed and kept (`rows` not increasing):
+/// row a has `rows[a]` cells (at most `vs.len()`), and a cell past its row reads as −∞. A
+/// cell reads only cells below and left of it, so each is what the whole table would hold.
+/// Kept whole (W by V points), the table of the corner of a narrow spike whose band was
+/// made finer along it (fuzz case 4076 of seed 20261123) asked for 122 million cells, and
+/// the run was killed at the machine's 24 GB; by its rows it meshes in 234 MB.
 ///
 /// A cell is computed from the points ws[..=a] and vs[..=b] alone, so where `from` (a table
 /// for the same corner) shares the first W and V points, its cells there that it computed
@@ -222,7 +215,11 @@ pub fn wedge(
     const SPAN: usize = 24;
     let (na, nb) = (ws.len(), vs.len());
     debug_assert!(rows.len() == na && rows.windows(2).all(|r| r[0] >= r[1]));
-    let mut best = vec![vec![(f64::NEG_INFINITY, WedgeStep::Tip); nb]; na];
+    // Row a holds the cells the ladder may read (`rows`); a cell past its row is −∞.
+    let mut best: WedgeTable = rows
+        .iter()
+        .map(|&r| vec![(f64::NEG_INFINITY, WedgeStep::Tip); r.min(nb)])
+        .collect();
     for a in 0..na {
         for b in 0..rows[a].min(nb) {
             if let Some((old, old_rows, pa, pb)) = from {
@@ -703,11 +700,6 @@ fn fill_polygon(
         for a in (1..rows.len()).rev() {
             rows[a - 1] = rows[a - 1].max(rows[a]);
         }
-        // `wedge` makes the whole table, W by V points, though it computes only `rows`.
-        let cells = ws.len().saturating_mul(vs.len());
-        if cells > WEDGE_CELLS {
-            return Err(Stuck::Wedge(ring[j], cells));
-        }
         let wp: Vec<Point> = ws.iter().map(|x| inner[x.1]).collect();
         let vp: Vec<Point> = vs.iter().map(|x| inner[x.1]).collect();
         let key = Words(
@@ -759,7 +751,7 @@ fn fill_polygon(
     let wedge_value = |j: usize, k0: usize, k1: usize| -> Option<(usize, usize, f64)> {
         let (_, _, table) = wedges[j].as_ref()?;
         let (a, b) = (w_pos[k0]?, v_pos[k1]?);
-        let v = table[a][b].0;
+        let v = table[a].get(b).map_or(f64::NEG_INFINITY, |c| c.0);
         (v > f64::NEG_INFINITY).then_some((a, b, v))
     };
     let link = |k0: usize, k1: usize| -> Option<f64> {

@@ -142,6 +142,16 @@ pub fn fuzz_campaign(
     fuzz_campaign_sized(mesher, cases, seed, MAX_POINTS, out, progress)
 }
 
+/// What a campaign's summary line says of where its cases start: nothing from case 0,
+/// else " from case N".
+pub fn from_case(first: u64) -> String {
+    if first > 0 {
+        format!(" from case {first}")
+    } else {
+        String::new()
+    }
+}
+
 /// Most points in one generated case (before duplicates are dropped).
 pub const MAX_POINTS: usize = 80;
 

@@ -809,11 +809,7 @@ fn fuzz(args: &FuzzArgs) -> Result<ExitCode> {
         "fuzz {}: {} cases{} (seed {}), {} refused as too close for f64 at their coordinates, {} failed",
         summary.mesher,
         summary.cases,
-        if summary.first > 0 {
-            format!(" from case {}", summary.first)
-        } else {
-            String::new()
-        },
+        crate::fuzz::from_case(summary.first),
         summary.seed,
         summary.refused,
         summary.failures

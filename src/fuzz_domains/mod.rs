@@ -635,11 +635,7 @@ impl fmt::Display for DomainSummary {
             "fuzz --domains {}: {} cases{} (seed {}), {} passed, {} refused, {} failed",
             self.mesher,
             self.cases,
-            if self.first > 0 {
-                format!(" from case {}", self.first)
-            } else {
-                String::new()
-            },
+            crate::fuzz::from_case(self.first),
             self.seed,
             self.passed,
             self.refused,

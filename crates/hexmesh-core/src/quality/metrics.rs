@@ -547,7 +547,7 @@ fn triangle_near_segment(p: [Point; 3], a: Point, b: Point, band: f64) -> bool {
 /// Distance from `q` to the segment ab (rounded arithmetic). The parameter of the nearest
 /// point is computed on ab and aq scaled by one power of two (exact; the quotient does not
 /// see it), and the distance by `dist_scaled`, so that no square overflows or underflows.
-fn point_segment(q: Point, a: Point, b: Point) -> f64 {
+pub(crate) fn point_segment(q: Point, a: Point, b: Point) -> f64 {
     let ab = sub(b, a);
     let aq = sub(q, a);
     let e = scale_exponent(&[ab[0], ab[1], aq[0], aq[1]]);

@@ -110,16 +110,7 @@ impl Segments {
     pub fn distance(&self, p: Point) -> f64 {
         self.ends
             .iter()
-            .map(|&[a, b]| {
-                let (ab, ap) = ([b[0] - a[0], b[1] - a[1]], [p[0] - a[0], p[1] - a[1]]);
-                let len2 = ab[0] * ab[0] + ab[1] * ab[1];
-                let t = if len2 > 0.0 {
-                    ((ap[0] * ab[0] + ap[1] * ab[1]) / len2).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                dist(p, [a[0] + t * ab[0], a[1] + t * ab[1]])
-            })
+            .map(|&[a, b]| crate::quality::metrics::point_segment(p, a, b))
             .fold(f64::INFINITY, f64::min)
     }
 

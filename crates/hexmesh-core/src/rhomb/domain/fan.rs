@@ -14,7 +14,7 @@
 //! fan leaves the lattice as the tree made it and searches the rays' angles and radii.
 
 use super::boxes::{key, ladder, Failure, Vertex};
-use super::fill::{wedge, wedge_triangles, whole_corner_key, WedgeVertex};
+use super::wedge::{wedge, wedge_triangles, whole_corner_key, WedgeVertex};
 use crate::geom::{angle_deg, dist, orient2d, Point};
 
 /// Numbers in [0, 1) from `seed`, the same on every machine (a linear congruential

@@ -16,6 +16,8 @@
 //!   corners to candidate points on the boundary in [30°, 90°], keeping the smallest angle
 //!   as large as it can; the border-boxes' Steiner points are among its candidates;
 //! - `blocks` (ours): the inner chain in runs with bounding boxes, for the fill's windows;
+//! - `wedge` (ours, in place of Sec. 5.6–5.7): the triangulations of a corner sharper than
+//!   90° between its two sides, a table the fill reads at every rung across the corner;
 //! - `fill` (steps 11, 13–16, ours in detail): one cyclic ladder between each polygon and
 //!   its front, with each input corner's tip (a fan of rays at c, or below 90° a wedge
 //!   between its two sides) in the same chain;
@@ -75,6 +77,7 @@ mod input;
 mod near;
 mod pieces;
 mod relax;
+mod wedge;
 
 use crate::error::{Error, Result};
 use crate::geom::Hexagon;

@@ -272,8 +272,9 @@ pub fn finer_near(
 /// enough for the kept lattice to reach it. The corner condition (step 3) keeps the other
 /// input points out of a single point's window, not the segments: points 0.0015 to 0.01
 /// from a segment in domains two units across, in a band of sides near 0.02 (fuzz cases
-/// 4076, 4892, 5228 and 9759 of seed 20261123), were cut out of the mesh; splitting the point's own leaf alone left it
-/// on an island inside the gap the fill spans, which the fill covered a second time.
+/// 4076, 4892, 5228 and 9759 of seed 20261123), were cut out of the mesh; splitting the
+/// point's own leaf alone left it on an island inside the gap the fill spans, which the
+/// fill covered a second time.
 pub fn around_single(
     tree: &mut Tree,
     frame: &Frame,

@@ -35,9 +35,10 @@
 //! segment is refused) and the tests' squares, hexagons, triangles, stars with star holes.
 //! Not shown yet for every permitted domain: of the 10,000 cases of `fuzz --domains`
 //! (seed 20261123), 69 failed on 3ac4b84, the first on the campaign's 20 s a case (README);
-//! four of them (single points near a segment) mesh since, one past that budget. Seed 2's thin slit that meshed past
-//! the campaign's 500,000 vertices is meshed since an even band is kept to half a vertex
-//! budget (`band::choose`). A failure is an error, never a mesh outside the promise.
+//! four of them (single points near a segment) mesh since, one past that budget. Seed 2's
+//! thin slit that meshed past the campaign's 500,000 vertices is meshed since an even band
+//! is kept to half a vertex budget (`band::choose`). A failure is an error, never a mesh
+//! outside the promise.
 //!
 //! Departures: several outer polygons in one tree (`input`); the path condition of
 //! crowdedness not tested (`crowded`); both split at least as much as the paper. In place
@@ -260,7 +261,7 @@ fn build(
             // own triangles stay (`lost_singles`, `band::around_single`).
             let lost = lost_singles(&domain, &cut);
             if let Some(&p) = lost.first().filter(|_| single_rounds == SINGLE_ROUNDS) {
-                return Err(single_lost(p, o));
+                return Err(single_lost(p, o, single_rounds));
             }
             if !lost.is_empty() {
                 single_rounds += 1;
@@ -269,7 +270,7 @@ fn build(
                     if !band::around_single(&mut tree, &frame, &segments, band, p, &guard)
                         .map_err(stopped)?
                     {
-                        return Err(single_lost(p, o));
+                        return Err(single_lost(p, o, single_rounds));
                     }
                 }
                 continue 'refine;
@@ -348,8 +349,6 @@ fn build(
                     eroded[v as usize] = true;
                     rounds += 1;
                 }
-                // Islands are not a ladder's failure: their erosions have a count of their
-                // own, per lattice (`ISLAND_ROUNDS`).
                 // An island holding a single point: eroding it would cut the point out;
                 // the band beside the island is made finer instead, until it joins the
                 // rest (`band::around_single`, `band::around_island`).
@@ -373,8 +372,14 @@ fn build(
                     {
                         continue 'refine;
                     }
-                    return Err(single_lost(domain.points[singles[0] as usize], o));
+                    return Err(single_lost(
+                        domain.points[singles[0] as usize],
+                        o,
+                        single_rounds,
+                    ));
                 }
+                // Islands are not a ladder's failure: their erosions have a count of their
+                // own, per lattice (`ISLAND_ROUNDS`).
                 Err(fill::Stuck::Island(corners)) if islands < ISLAND_ROUNDS => {
                     for v in corners {
                         eroded[v as usize] = true;
@@ -420,15 +425,15 @@ fn build(
     Ok((mesh, whole, tree.steps))
 }
 
-/// The error where `SINGLE_ROUNDS` rounds of `band::around_single` and
-/// `band::around_island` did not join single point `p` (near the origin; `o` shifts it
-/// back) to the kept lattice.
-fn single_lost(p: crate::geom::Point, o: crate::geom::Point) -> Error {
+/// The error where `rounds` rounds of `band::around_single` and `band::around_island` (at
+/// most `SINGLE_ROUNDS`, fewer where nothing was left to split) did not join single point
+/// `p` (near the origin; `o` shifts it back) to the kept lattice.
+fn single_lost(p: crate::geom::Point, o: crate::geom::Point, rounds: usize) -> Error {
     Error::mesher(
         super::NAME,
         format!(
             "the single point at ({}, {}) is not joined to the lattice the fill reaches after \
-             {SINGLE_ROUNDS} rounds of finer rhombs beside it",
+             {rounds} rounds of finer rhombs beside it",
             p[0] + o[0],
             p[1] + o[1]
         ),

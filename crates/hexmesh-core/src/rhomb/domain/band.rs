@@ -326,7 +326,7 @@ pub fn around_island(
 const ISLAND_REACH: f64 = 4.0;
 
 /// The side of leaf `c`.
-fn leaf_side(frame: &Frame, c: Cell) -> f64 {
+pub fn leaf_side(frame: &Frame, c: Cell) -> f64 {
     let corner = |di: i64| frame.point(lattice::key(c.level, c.i + di, c.j));
     crate::geom::dist(corner(0), corner(1))
 }

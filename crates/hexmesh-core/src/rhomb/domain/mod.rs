@@ -227,25 +227,11 @@ fn build(
             .map(|poly| {
                 poly.corners
                     .iter()
-                    .map(|&c| leaf_side(&tree, &frame, c))
+                    .map(|&c| band::leaf_side(&frame, tree.locate(c)))
                     .collect()
             })
             .collect();
         let mut eroded = vec![false; lattice.vertices.len()];
-        // The lattice vertices that are single points (vertex i is domain point i).
-        let mut single = vec![
-            false;
-            if patches.is_empty() {
-                0
-            } else {
-                lattice.vertices.len()
-            }
-        ];
-        for &p in &domain.singles {
-            if let Some(s) = single.get_mut(p as usize) {
-                *s = true;
-            }
-        }
         // Erosion rounds of islands on this lattice.
         let mut islands = 0usize;
         let mut prepared = cut::prepare(&lattice, &domain, &segments, &fixed, CLEAR);
@@ -292,7 +278,7 @@ fn build(
             }
             // The islands' corners and single points of the islands that hold one.
             let held = match &result {
-                Err(fill::Stuck::Island(corners)) => holding_single(&cut, corners, &single),
+                Err(fill::Stuck::Island(corners)) => holding_single(&cut, corners, &domain.singles),
                 _ => (Vec::new(), Vec::new()),
             };
             match result {
@@ -450,11 +436,12 @@ const SINGLE_ON_ISLAND: &str = "band made finer beside an island holding a singl
 const SINGLE_ROUNDS: usize = 40;
 
 /// Of the island corners `corners`, those of islands (parts of the kept lattice of `cut`,
-/// joined through its triangles) that hold a single point (`single[v]`), and those single
-/// points: an island is eroded a ring a round (`ISLAND_ROUNDS`), and the ring that reaches
-/// such a point would cut it out of the mesh.
-fn holding_single(cut: &cut::Cut, corners: &[u32], single: &[bool]) -> (Vec<u32>, Vec<u32>) {
-    if !single.contains(&true) {
+/// joined through its triangles) that hold one of the single points `singles` (lattice
+/// vertex i is domain point i), and those single points: an island is eroded a ring a
+/// round (`ISLAND_ROUNDS`), and the ring that reaches such a point would cut it out of the
+/// mesh.
+fn holding_single(cut: &cut::Cut, corners: &[u32], singles: &[u32]) -> (Vec<u32>, Vec<u32>) {
+    if singles.is_empty() {
         return (Vec::new(), Vec::new());
     }
     let mut parent: Vec<u32> = (0..cut.position.len() as u32).collect();
@@ -475,8 +462,10 @@ fn holding_single(cut: &cut::Cut, corners: &[u32], single: &[bool]) -> (Vec<u32>
     }
     let island_roots: std::collections::BTreeSet<u32> =
         corners.iter().map(|&v| root(&mut parent, v)).collect();
-    let singles: Vec<u32> = (0..single.len() as u32)
-        .filter(|&v| single[v as usize] && island_roots.contains(&root(&mut parent, v)))
+    let singles: Vec<u32> = singles
+        .iter()
+        .copied()
+        .filter(|&v| island_roots.contains(&root(&mut parent, v)))
         .collect();
     let held: std::collections::BTreeSet<u32> =
         singles.iter().map(|&v| root(&mut parent, v)).collect();
@@ -512,13 +501,6 @@ fn lost_singles(domain: &Domain, cut: &cut::Cut) -> Vec<crate::geom::Point> {
         .filter(|&&p| !used[p as usize])
         .map(|&p| domain.points[p as usize])
         .collect()
-}
-
-/// The side of the leaf holding domain point `c`.
-fn leaf_side(tree: &Tree, frame: &Frame, c: u32) -> f64 {
-    let leaf = tree.locate(c);
-    let at = |i: i64| frame.point(super::lattice::key(leaf.level, leaf.i + i, leaf.j));
-    crate::geom::dist(at(0), at(1))
 }
 
 /// How far (in lattice sides) from an input corner the lattice's corners are left out.
